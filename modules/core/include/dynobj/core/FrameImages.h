@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// 8-bit renderings of a LidarFrame for people and for OpenCV feature detectors.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <string>
+
+#include "dynobj/core/LidarFrame.h"
+
+namespace dynobj::core {
+
+/// Linear percentile stretch of the pixels under `mask` (non-zero): the lo_pct percentile maps
+/// to 1, the hi_pct percentile to 255 (clamped); pixels outside the mask are 0, so a no-return
+/// is never confused with a dark return. Works for any sensor's units.
+cv::Mat_<std::uint8_t> stretchToU8(const cv::Mat_<float>& image, const cv::Mat_<std::uint8_t>& mask,
+                                   double lo_pct = 1.0, double hi_pct = 99.0);
+
+/// Range image, near = warm colours (TURBO colour map scaled to [0, max_range]); no return = black.
+cv::Mat rangeToColor(const LidarFrame& frame, double max_range);
+
+/// Intensity image stretched with stretchToU8; the range image when the frame has no intensity.
+cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame);
+
+/// Repeats each row `row_scale` times (nearest neighbour) so that a 16- or 64-row image is
+/// readable on screen.
+cv::Mat scaleRows(const cv::Mat& image, int row_scale);
+
+/// Writes <prefix>range.png and <prefix>intensity.png. Throws std::runtime_error naming the file
+/// when it cannot be written.
+void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_scale = 1);
+
+/// cv::imwrite that throws std::runtime_error naming the path on failure.
+void writePng(const std::string& path, const cv::Mat& image);
+
+}  // namespace dynobj::core

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/SphericalProjection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace dynobj::core {
+namespace {
+
+bool finitePoint(float x, float y, float z) {
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) &&
+         !(x == 0.0f && y == 0.0f && z == 0.0f);
+}
+
+/// Intensity of point i (0 when the cloud has none); counts and zeroes bad values.
+float sanitizedIntensity(const PointCloud& cloud, std::size_t i, ProjectionStats& st) {
+  if (!cloud.hasIntensity()) return 0.0f;
+  const float v = cloud.intensity[i];
+  if (std::isfinite(v) && v >= 0.0f) return v;
+  st.bad_intensity++;
+  return 0.0f;
+}
+
+/// Puts point i at (r, c) unless a nearer point is already there. Updates the point map.
+void insertPoint(const PointCloud& cloud, std::size_t i, int r, int c, LidarFrame& frame,
+                 ProjectionStats& st) {
+  const float px = cloud.x[i], py = cloud.y[i], pz = cloud.z[i];
+  const float rng = std::sqrt(px * px + py * py + pz * pz);
+  const float inten = sanitizedIntensity(cloud, i, st);
+  frame.point_pixel[i] = frame.pixelIndex(r, c);
+  if (frame.isValid(r, c)) {
+    st.hidden++;
+    if (frame.range(r, c) <= rng) return;  // keep the nearer point (ties: the first one)
+  }
+  frame.setPixel(r, c, rng, inten, cv::Vec3f(px, py, pz), static_cast<std::int32_t>(i));
+}
+
+void prepare(const PointCloud& cloud, const SensorModel& sensor, LidarFrame& frame,
+             ProjectionStats& st) {
+  cloud.validate();
+  frame.reset(sensor);
+  frame.has_intensity = cloud.hasIntensity();
+  frame.point_pixel.assign(cloud.size(), -1);
+  st.input_points = cloud.size();
+}
+
+}  // namespace
+
+std::string ProjectionStats::toString() const {
+  std::ostringstream ss;
+  ss << input_points << " points -> " << pixels_set << " pixels (" << hidden << " hidden, "
+     << outside_fov << " outside FOV, " << invalid << " invalid";
+  if (bad_intensity) ss << ", " << bad_intensity << " bad intensities";
+  ss << ")";
+  return ss.str();
+}
+
+SphericalProjection::SphericalProjection(const SensorModel& sensor) : sensor_(sensor) {
+  sensor_.validate();
+  fov_up_ = sensor_.fovUp();
+  fov_span_ = sensor_.fovSpan();
+  if (!sensor_.isUniform()) {
+    const auto e = sensor_.rowElevations();
+    row_upper_edges_.resize(e.size());
+    row_upper_edges_[0] = fov_up_;
+    for (std::size_t r = 1; r < e.size(); r++) row_upper_edges_[r] = 0.5 * (e[r - 1] + e[r]);
+    lower_edge_ = fov_up_ - fov_span_;
+  }
+}
+
+int SphericalProjection::columnOf(double x, double y) const {
+  const int w = sensor_.cols;
+  // Eq. (1): u = (atan2(y, x) + pi) / (2 pi) * w
+  const double u = (std::atan2(y, x) + M_PI) / (2.0 * M_PI) * w;
+  int col = static_cast<int>(std::floor(u));
+  if (col >= w) col -= w;  // atan2 = +pi is the same direction as -pi
+  if (col < 0) col = 0;
+  return col;
+}
+
+int SphericalProjection::rowOfElevation(double elevation) const {
+  const int h = sensor_.rows;
+  if (sensor_.isUniform()) {
+    // Eq. (1): v = (beta_up - elevation) / beta_fov * h
+    const double v = (fov_up_ - elevation) / fov_span_ * h;
+    if (v < 0.0 || v > h) return -1;
+    return std::min(static_cast<int>(std::floor(v)), h - 1);  // bottom edge -> last row
+  }
+  if (elevation > row_upper_edges_.front() || elevation < lower_edge_) return -1;
+  // Row r covers (upper_edge[r+1], upper_edge[r]]; edges are descending.
+  const auto it = std::lower_bound(row_upper_edges_.begin(), row_upper_edges_.end(), elevation,
+                                   [](double edge, double e) { return edge >= e; });
+  const int row = static_cast<int>(it - row_upper_edges_.begin()) - 1;
+  return std::clamp(row, 0, h - 1);
+}
+
+bool SphericalProjection::pixelOf(double x, double y, double z, int& row, int& col) const {
+  row = col = -1;
+  const double r = std::sqrt(x * x + y * y + z * z);
+  if (!(r > 0.0) || !std::isfinite(r)) return false;
+  const int v = rowOfElevation(std::asin(std::clamp(z / r, -1.0, 1.0)));
+  if (v < 0) return false;
+  row = v;
+  col = columnOf(x, y);
+  return true;
+}
+
+ProjectionStats SphericalProjection::project(const PointCloud& cloud, LidarFrame& frame) const {
+  ProjectionStats st;
+  prepare(cloud, sensor_, frame, st);
+  for (std::size_t i = 0; i < cloud.size(); i++) {
+    if (!finitePoint(cloud.x[i], cloud.y[i], cloud.z[i])) {
+      st.invalid++;
+      continue;
+    }
+    int r = -1, c = -1;
+    if (!pixelOf(cloud.x[i], cloud.y[i], cloud.z[i], r, c)) {
+      st.outside_fov++;
+      continue;
+    }
+    insertPoint(cloud, i, r, c, frame, st);
+  }
+  st.pixels_set = frame.validCount();
+  return st;
+}
+
+ProjectionStats SphericalProjection::organize(const PointCloud& cloud, LidarFrame& frame) const {
+  if (!cloud.isOrganized())
+    throw std::invalid_argument("organize(): the cloud has no row/col per point");
+  ProjectionStats st;
+  prepare(cloud, sensor_, frame, st);
+  for (std::size_t i = 0; i < cloud.size(); i++) {
+    const int r = cloud.row[i], c = cloud.col[i];
+    if (r >= sensor_.rows || c >= sensor_.cols) {
+      std::ostringstream ss;
+      ss << "point " << i << " has pixel (row " << r << ", col " << c << ") outside the "
+         << sensor_.rows << "x" << sensor_.cols << " image";
+      throw std::invalid_argument(ss.str());
+    }
+    if (!finitePoint(cloud.x[i], cloud.y[i], cloud.z[i])) {
+      st.invalid++;
+      continue;
+    }
+    insertPoint(cloud, i, r, c, frame, st);
+  }
+  st.pixels_set = frame.validCount();
+  return st;
+}
+
+}  // namespace dynobj::core
