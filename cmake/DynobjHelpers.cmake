@@ -8,7 +8,7 @@ set(DYNOBJ_EXPORT_SET dynobjTargets)
 function(dynobj_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
                                            -Wold-style-cast -Wcast-align -Woverloaded-virtual
-                                           -Wnull-dereference -Wdouble-promotion -Wformat=2)
+                                           -Wformat=2)
   if(DYNOBJ_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -27,7 +27,7 @@ std::string stripComment(const std::string& s) {
 }
 
 /// The raw value, or nullopt-like empty flag when absent.
-bool rawValue(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+bool rawValue(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
               const std::string& key, bool required, std::string& out) {
   if (!cfg.keyExists(section, key)) {
     if (required) throwParameterError(qualified(section, key), "required key is missing");
@@ -76,21 +76,21 @@ void requirePositive(const std::string& key, double value) {
   }
 }
 
-double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+double readDouble(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key, double def, bool required) {
   std::string raw;
   if (!rawValue(cfg, section, key, required, raw)) return def;
   return parseDouble(qualified(section, key), raw);
 }
 
-double readDegrees(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+double readDegrees(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                    const std::string& key, double def_rad, bool required) {
   std::string raw;
   if (!rawValue(cfg, section, key, required, raw)) return def_rad;
   return parseDouble(qualified(section, key), raw) * M_PI / 180.0;
 }
 
-int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+int readInt(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
             const std::string& key, int def, bool required) {
   std::string raw;
   if (!rawValue(cfg, section, key, required, raw)) return def;
@@ -100,7 +100,7 @@ int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section
   return static_cast<int>(v);
 }
 
-bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+bool readBool(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
               const std::string& key, bool def, bool required) {
   std::string raw;
   if (!rawValue(cfg, section, key, required, raw)) return def;
@@ -111,14 +111,14 @@ bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& secti
   throwParameterError(qualified(section, key), "'" + raw + "' is not a boolean (true/false/1/0)");
 }
 
-std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+std::string readString(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                        const std::string& key, const std::string& def, bool required) {
   std::string raw;
   if (!rawValue(cfg, section, key, required, raw)) return def;
   return raw;
 }
 
-std::vector<double> readDoubleList(const mrpt::config::CConfigFileBase& cfg,
+std::vector<double> readDoubleList(const ::mrpt::config::CConfigFileBase& cfg,
                                    const std::string& section, const std::string& key,
                                    bool required) {
   std::string raw;

@@ -26,7 +26,7 @@ double halfGap(const std::vector<double>& sorted_desc, bool top) {
 
 }  // namespace
 
-void SensorModel::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+void SensorModel::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
                                      const std::string& s) {
   model = readString(c, s, "model", model);
   rows = readInt(c, s, "rows", rows, true);
@@ -42,7 +42,7 @@ void SensorModel::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
   validate();
 }
 
-void SensorModel::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
+void SensorModel::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
   c.write(s, "model", model);
   c.write(s, "rows", rows);
   c.write(s, "cols", cols);
@@ -87,9 +87,9 @@ void SensorModel::validate() const {
 }
 
 SensorModel SensorModel::fromFile(const std::string& ini_path, const std::string& section) {
-  if (!mrpt::system::fileExists(ini_path))
+  if (!::mrpt::system::fileExists(ini_path))
     throw ParameterError("sensor file '" + ini_path + "' does not exist");
-  mrpt::config::CConfigFile cfg(ini_path);
+  ::mrpt::config::CConfigFile cfg(ini_path);
   if (!cfg.sectionExists(section))
     throw ParameterError(ini_path + ": section [" + section + "] not found");
   SensorModel m;

@@ -74,6 +74,7 @@ int SphericalProjection::columnOf(double x, double y) const {
   const int w = sensor_.cols;
   // Eq. (1): u = (atan2(y, x) + pi) / (2 pi) * w
   const double u = (std::atan2(y, x) + M_PI) / (2.0 * M_PI) * w;
+  if (!std::isfinite(u)) return 0;  // NaN input: callers reject such points anyway
   int col = static_cast<int>(std::floor(u));
   if (col >= w) col -= w;  // atan2 = +pi is the same direction as -pi
   if (col < 0) col = 0;

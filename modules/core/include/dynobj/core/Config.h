@@ -27,19 +27,19 @@ void requirePositive(const std::string& key, double value);
 
 // Readers. A missing key returns `def`, or throws when `required`. A present key whose value does
 // not parse completely (e.g. "12abc", "yes please") throws a ParameterError naming it.
-double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+double readDouble(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key, double def, bool required = false);
 /// Reads degrees from the file and returns radians (MRPT convention).
-double readDegrees(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+double readDegrees(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                    const std::string& key, double def_rad, bool required = false);
-int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+int readInt(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
             const std::string& key, int def, bool required = false);
-bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+bool readBool(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
               const std::string& key, bool def, bool required = false);
-std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+std::string readString(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,
                        const std::string& key, const std::string& def, bool required = false);
 /// A list written "a b c", "a, b, c" or "[a b c]"; empty when the key is absent.
-std::vector<double> readDoubleList(const mrpt::config::CConfigFileBase& cfg,
+std::vector<double> readDoubleList(const ::mrpt::config::CConfigFileBase& cfg,
                                    const std::string& section, const std::string& key,
                                    bool required = false);
 

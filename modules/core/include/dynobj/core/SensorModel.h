@@ -11,7 +11,7 @@
 
 namespace dynobj::core {
 
-struct SensorModel : public mrpt::config::CLoadableOptions {
+struct SensorModel : public ::mrpt::config::CLoadableOptions {
   /// Free-form model name, e.g. "OS0-64" (INI key `model`).
   std::string model = "OS0-64";
   /// Number of beams = image rows H. Row 0 is the highest beam (INI key `rows`).
@@ -32,9 +32,9 @@ struct SensorModel : public mrpt::config::CLoadableOptions {
   /// [Hz] Revolutions per second (INI key `frequency`).
   double frequency = 10.0;
 
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& source,
                           const std::string& section) override;
-  void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& target,
                         const std::string& section) const override;
   /// Throws ParameterError naming the first bad key.
   void validate() const;
