@@ -80,7 +80,15 @@ void writePng(const std::string& path, const cv::Mat& image) {
 }
 
 void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_scale) {
-  writePng(prefix + "range.png", scaleRows(rangeToColor(frame, frame.sensor.max_range), row_scale));
+  // Colour scale: the 98th percentile of the frame's ranges, so indoor and outdoor scans both use
+  // the whole colour map.
+  std::vector<float> ranges;
+  ranges.reserve(frame.validCount());
+  for (int r = 0; r < frame.rows(); r++)
+    for (int c = 0; c < frame.cols(); c++)
+      if (frame.isValid(r, c)) ranges.push_back(frame.range(r, c));
+  const double scale = ranges.empty() ? frame.sensor.max_range : percentile(ranges, 98.0);
+  writePng(prefix + "range.png", scaleRows(rangeToColor(frame, scale), row_scale));
   writePng(prefix + "intensity.png", scaleRows(intensityToU8(frame), row_scale));
 }
 

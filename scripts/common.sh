@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Shared by scripts/demo.sh and scripts/test.sh: install what is missing (Debian bookworm
+# packages only), then configure and build incrementally. Idempotent: a second run installs
+# nothing and rebuilds only what changed.
+set -euo pipefail
+
+DYNOBJ_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# Why each package is needed: docs/architecture.md, "Dependencies".
+DYNOBJ_PACKAGES=(cmake make g++ libmrpt-dev mrpt-apps mrpt-common libopencv-dev libeigen3-dev
+                 libgtest-dev)
+
+log() { printf '[dynobj] %s\n' "$*"; }
+
+ensure_packages() {
+  local missing=() p
+  for p in "${DYNOBJ_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    log "all packages present"
+    return 0
+  fi
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+    sudo=sudo
+  fi
+  log "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# build_project <build-dir> [extra cmake args...]
+build_project() {
+  local dir="$1"
+  shift
+  log "configuring ${dir}"
+  cmake -S "$DYNOBJ_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="${DYNOBJ_BUILD_TYPE:-Release}" "$@" >/dev/null
+  log "building ${dir} ($(nproc) jobs)"
+  cmake --build "$dir" -j "$(nproc)"
+}

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Installs, builds and runs every test (unit, real-data, command-line, package consumer).
+# Exits non-zero on any failure. Usage: scripts/test.sh [extra ctest args]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+
+ensure_packages
+BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
+build_project "$BUILD_DIR" -DDYNOBJ_BUILD_TESTS=ON
+log "running tests"
+cd "$BUILD_DIR"
+ctest --output-on-failure -j "$(nproc)" "$@"
