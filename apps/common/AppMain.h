@@ -17,23 +17,15 @@
 
 namespace dynobj::apps {
 
-/// TCLAP output that remembers whether parsing failed (MRPT's TCLAP returns false both for
-/// --help and for an error).
-class RecordingOutput : public TCLAP::StdOutput {
- public:
-  bool failed = false;
-  void failure(TCLAP::CmdLineInterface& c, TCLAP::ArgException& e) override {
-    failed = true;
-    TCLAP::StdOutput::failure(c, e);
-  }
-};
-
-/// Parses; returns an exit code when the app must stop now (0 after --help, 2 after an error).
+/// Parses; returns an exit code when the app must stop now: 0 after --help / --version, 2 after
+/// a command-line error (MRPT's TCLAP prints the message and returns false in both cases).
 inline std::optional<int> parseCommandLine(TCLAP::CmdLine& cmd, int argc, char** argv) {
-  static RecordingOutput output;
-  cmd.setOutput(&output);
   if (cmd.parse(argc, argv)) return std::nullopt;
-  return output.failed ? 2 : 0;
+  for (int i = 1; i < argc; i++) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help" || a == "--version") return 0;
+  }
+  return 2;
 }
 
 /// Creates `dir` (and its parents) if missing; throws naming it when that is impossible.
