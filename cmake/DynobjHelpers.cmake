@@ -59,6 +59,10 @@ function(dynobj_add_app)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS" ${ARGN})
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS})
+  # Shipped data: the source tree's share/dynobj when run from a build, else the installed copy.
+  target_compile_definitions(${ARG_NAME} PRIVATE
+    DYNOBJ_SHARE_DIR_BUILD="${DYNOBJ_SHARE_DIR_BUILD}"
+    DYNOBJ_SHARE_DIR_INSTALLED="${CMAKE_INSTALL_PREFIX}/${DYNOBJ_SHARE_DIR_INSTALL}")
   dynobj_set_warnings(${ARG_NAME})
   install(TARGETS ${ARG_NAME} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()

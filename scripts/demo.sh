@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Installs, builds (Release) and runs the main job on the bundled input.
-# Today: converts the real Velodyne VLP-16 scan that MRPT ships into a LiDAR frame and writes its
-# range and intensity images as PNG (native 16 rows, and an 8x taller preview).
+# Today: (1) converts the real Velodyne VLP-16 scan that MRPT ships into a LiDAR frame and writes
+# its range and intensity images as PNG (native 16 rows, and an 8x taller preview); (2) simulates
+# the labelled hall sample and writes a preview with the ground-truth moving people in red.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
@@ -14,4 +15,8 @@ INPUT=/usr/share/mrpt/datasets/test_velodyne_VLP16.rawlog
 log "converting ${INPUT}"
 "$BUILD_DIR/apps/dynobj-frames" -i "$INPUT" -o "$OUT"
 "$BUILD_DIR/apps/dynobj-frames" -i "$INPUT" -o "$OUT/preview-x8" --row-scale 8 -q
-log "done: images in ${OUT} (and ${OUT}/preview-x8)"
+log "simulating the hall sample (40 sweeps, OS0-64 512 x 10)"
+"$BUILD_DIR/apps/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/hall.yaml" -o "$OUT/hall-small" \
+  --frames 40 --set sensor=sensors/os0-64-512.ini --set name=hall-small --preview 30 -q
+log "done: images in ${OUT} (and ${OUT}/preview-x8); simulated sample and"
+log "      ${OUT}/hall-small/hall-small.preview.png (ground-truth dynamic pixels in red)"

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -35,6 +36,20 @@ inline void ensureDirectory(const std::string& dir) {
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error("cannot create output directory '" + dir + "'" +
                              (ec ? ": " + ec.message() : std::string()));
+}
+
+/// The shipped data folder (share/dynobj): $DYNOBJ_SHARE if set, else the source tree's when
+/// run from a build tree, else the installed one.
+inline std::string shareDir() {
+  if (const char* env = std::getenv("DYNOBJ_SHARE")) return env;
+#ifdef DYNOBJ_SHARE_DIR_BUILD
+  if (std::filesystem::is_directory(DYNOBJ_SHARE_DIR_BUILD)) return DYNOBJ_SHARE_DIR_BUILD;
+#endif
+#ifdef DYNOBJ_SHARE_DIR_INSTALLED
+  return DYNOBJ_SHARE_DIR_INSTALLED;
+#else
+  return "share/dynobj";
+#endif
 }
 
 /// Runs `body`, printing "<app>: error: <message>" and returning 1 on an exception.

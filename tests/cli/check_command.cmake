@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Black-box check of one command-line run, used by tests/CMakeLists.txt:
 #   cmake -DCMD="prog;arg;..." [-DPREPARE="sh;-c;..."] [-DEXPECT_RC=0] [-DEXPECT_OUT=regex]
-#         [-DEXPECT_ERR=regex] [-DEXPECT_FILES="a;b"] [-DEXPECT_NO_FILES="c"] -P check_command.cmake
+#         [-DEXPECT_ERR=regex] [-DEXPECT_FILES="a;b"] [-DEXPECT_NO_FILES="c"]
+#         [-DEXPECT_SAME="a=b;c=d"] -P check_command.cmake
 if(PREPARE)
   execute_process(COMMAND ${PREPARE} RESULT_VARIABLE prc)
   if(NOT prc EQUAL 0)
@@ -34,5 +35,14 @@ endforeach()
 foreach(f IN LISTS EXPECT_NO_FILES)
   if(EXISTS "${f}")
     message(FATAL_ERROR "file should not exist: ${f}")
+  endif()
+endforeach()
+foreach(pair IN LISTS EXPECT_SAME)
+  string(REPLACE "=" ";" ab "${pair}")
+  list(GET ab 0 a)
+  list(GET ab 1 b)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${a}" "${b}" RESULT_VARIABLE same)
+  if(NOT same EQUAL 0)
+    message(FATAL_ERROR "files differ: ${a} vs ${b}")
   endif()
 endforeach()

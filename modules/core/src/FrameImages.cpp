@@ -62,6 +62,15 @@ cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame) {
   return stretchToU8(frame.has_intensity ? frame.intensity : frame.range, frame.valid);
 }
 
+cv::Mat overlayMask(const cv::Mat_<std::uint8_t>& gray, const cv::Mat_<std::uint8_t>& mask,
+                    const cv::Scalar& bgr) {
+  CV_Assert(gray.size() == mask.size());
+  cv::Mat out;
+  cv::cvtColor(gray, out, cv::COLOR_GRAY2BGR);
+  out.setTo(bgr, mask != 0);
+  return out;
+}
+
 cv::Mat scaleRows(const cv::Mat& image, int row_scale) {
   if (row_scale <= 1) return image;
   cv::Mat out;

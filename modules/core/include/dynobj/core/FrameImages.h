@@ -22,6 +22,10 @@ cv::Mat rangeToColor(const LidarFrame& frame, double max_range);
 /// Intensity image stretched with stretchToU8; the range image when the frame has no intensity.
 cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame);
 
+/// Grey image (CV_8U) -> BGR with the pixels of `mask` (non-zero) painted in `bgr`.
+cv::Mat overlayMask(const cv::Mat_<std::uint8_t>& gray, const cv::Mat_<std::uint8_t>& mask,
+                    const cv::Scalar& bgr = cv::Scalar(0, 0, 255));
+
 /// Repeats each row `row_scale` times (nearest neighbour) so that a 16- or 64-row image is
 /// readable on screen.
 cv::Mat scaleRows(const cv::Mat& image, int row_scale);

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A simulated sequence: static scene, moving actors, the sensor platform's motion and the LiDAR
+// model. Loaded from share/dynobj/scenarios/*.yaml (format: docs/simulator.md).
+#pragma once
+
+#include <dynobj/core/SensorModel.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dynobj/sim/PoseTrack.h"
+#include "dynobj/sim/Shapes.h"
+#include "dynobj/sim/Texture.h"
+
+namespace dynobj::sim {
+
+/// A bad scenario file or override; what() names the file and the key path.
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class ActorClass { Pedestrian, Cyclist, Car };
+const char* toString(ActorClass c);
+
+/// One rigid part of a static object or an actor, in its owner's frame (actors) or the world.
+struct Part {
+  enum class Kind { Box, Cylinder } kind = Kind::Box;
+  Box box;
+  Cylinder cylinder;
+  Material material;
+};
+
+struct Actor {
+  int id = 0;
+  ActorClass cls = ActorClass::Pedestrian;
+  std::vector<Part> parts;  ///< in the actor frame: x forward, origin on the ground
+  PoseTrack track;
+};
+
+struct Scenario {
+  std::string name = "scenario";
+  std::uint32_t seed = 1;
+  int frames = 300;                 ///< sweeps to simulate
+  double start_time = 1.7e9;        ///< [s, Unix] timestamp of sweep 0
+  core::SensorModel sensor;         ///< from `sensor:` (a preset path under share/dynobj)
+  std::string sensor_label = "LIDAR";
+  Eigen::Vector3d mount{0, 0, 0.6}; ///< sensor position on the robot [m]
+  double range_sigma = 0.02;        ///< [m] Gaussian range noise
+  double dropout = 0.003;           ///< random no-return probability
+  double grazing_cos = 0.08;        ///< incidence cosine below which most returns drop
+  double intensity_gain = 700;      ///< signal of a white (reflectivity 1) wall at 10-50 m
+  double intensity_noise = 0.08;    ///< relative signal noise
+  double intensity_near_range = 1.5;  ///< [m] signal is suppressed below about this range
+  bool motion_distortion = false;   ///< columns fired over the sweep while everything moves
+  double moving_speed = 0.2;        ///< [m/s] an actor faster than this is "dynamic"
+  bool odometry = true;             ///< also write CObservationOdometry
+  double odometry_sigma_xy = 0.01;  ///< [m per sweep]
+  double odometry_sigma_yaw = 0.2 * M_PI / 180;  ///< [rad per sweep]
+
+  Floor floor;
+  Material floor_material;
+  std::vector<Part> statics;
+  std::vector<Actor> actors;
+
+  PoseTrack platform;
+  double bob_height = 0.0;  ///< [m] amplitude of the vertical bobbing (legged robot)
+  double bob_roll = 0.0;    ///< [rad] amplitudes
+  double bob_pitch = 0.0;
+  double bob_hz = 2.0;      ///< step frequency
+
+  double period() const { return 1.0 / sensor.frequency; }
+  double duration() const { return frames * period(); }
+
+  /// Loads a scenario. `share_dir` resolves `sensor:` paths; `overrides` are "key.path=value"
+  /// pairs applied to the YAML before it is read (e.g. {"seed", "7"}, {"frames", "60"}).
+  /// Throws ScenarioError naming the file and key.
+  static Scenario fromYamlFile(const std::string& path, const std::string& share_dir,
+                               const std::map<std::string, std::string>& overrides = {});
+  static Scenario fromYamlText(const std::string& text, const std::string& share_dir,
+                               const std::map<std::string, std::string>& overrides = {},
+                               const std::string& source = "scenario");
+};
+
+/// The body of an actor class, scaled to `height` [m].
+std::vector<Part> actorBody(ActorClass cls, double height, const Material& material);
+
+}  // namespace dynobj::sim

@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/sim/LidarSimulator.h"
+
+#include <dynobj/core/SphericalProjection.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace dynobj::sim {
+
+struct LidarSimulator::Posed {
+  Part part;  ///< in world coordinates
+  int actor = -1;
+  Eigen::Vector3d center;  ///< bounding sphere
+  double radius = 0;
+};
+
+namespace {
+
+constexpr int kGroup = 16;  ///< columns sharing one broad-phase list (and one time with distortion)
+
+/// Ouster-like signal vs range: suppressed in the near field (below ~near_range), flat mid-range,
+/// falling off far away.
+double rangeGain(double r, double near_range) {
+  const double q = r / near_range;
+  return (1.0 - std::exp(-q * q)) / (1.0 + std::pow(r / 60.0, 4));
+}
+
+Part placed(const Part& p, const Pose2& pose) {
+  Part out = p;
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  if (p.kind == Part::Kind::Box) {
+    const Eigen::Vector3d& l = p.box.center;
+    out.box.center = {pose.x + c * l.x() - s * l.y(), pose.y + s * l.x() + c * l.y(), l.z()};
+    out.box.yaw = p.box.yaw + pose.yaw;
+  } else {
+    const Eigen::Vector2d& l = p.cylinder.center;
+    out.cylinder.center = {pose.x + c * l.x() - s * l.y(), pose.y + s * l.x() + c * l.y()};
+  }
+  return out;
+}
+
+bool intersectPart(const Part& p, const Ray& ray, double t_max, Hit& hit) {
+  return p.kind == Part::Kind::Box ? intersect(p.box, ray, t_max, hit)
+                                   : intersect(p.cylinder, ray, t_max, hit);
+}
+
+/// Does the azimuth interval [a - h, a + h] contain the interval [lo, hi] partially?
+bool overlaps(double a, double h, double lo, double hi) {
+  if (h >= M_PI) return true;
+  const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  const double d = std::abs(std::atan2(std::sin(a - mid), std::cos(a - mid)));
+  return d <= h + half;
+}
+
+}  // namespace
+
+LidarSimulator::LidarSimulator(Scenario scenario) : s_(std::move(scenario)) {
+  s_.sensor.validate();
+  row_elev_ = s_.sensor.rowElevations();
+}
+
+std::int64_t LidarSimulator::timestampNs(int index) const {
+  return std::llround(s_.start_time * 1e9) + std::llround(index * 1e9 / s_.sensor.frequency);
+}
+
+Eigen::Isometry3d LidarSimulator::robotPose(double t) const {
+  const Pose2 p = s_.platform.at(t);
+  const double f = std::min(1.0, s_.platform.speed(t) / 1.0);  // bobbing grows with speed
+  const double w = 2 * M_PI * s_.bob_hz * t;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(p.x, p.y, s_.bob_height * f * std::sin(w));
+  T.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(s_.bob_pitch * f * std::cos(w), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(s_.bob_roll * f * std::sin(0.5 * w), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+Eigen::Isometry3d LidarSimulator::sensorPose(double t) const {
+  return robotPose(t) * Eigen::Translation3d(s_.mount);
+}
+
+void LidarSimulator::poseWorld(double t, std::vector<Posed>& out) const {
+  out.clear();
+  auto add = [&](const Part& p, int actor) {
+    Posed q;
+    q.part = p;
+    q.actor = actor;
+    if (p.kind == Part::Kind::Box) boundingSphere(p.box, q.center, q.radius);
+    else boundingSphere(p.cylinder, q.center, q.radius);
+    out.push_back(q);
+  };
+  for (const Part& p : s_.statics) add(p, -1);
+  for (const Actor& a : s_.actors) {
+    const Pose2 pose = a.track.at(t);
+    for (const Part& p : a.parts) add(placed(p, pose), a.id);
+  }
+}
+
+SimulatedSweep LidarSimulator::simulate(int index) const {
+  const core::SensorModel& sm = s_.sensor;
+  const int H = sm.rows, W = sm.cols;
+  SimulatedSweep sw;
+  sw.index = index;
+  sw.t = index * s_.period();
+  sw.timestamp_ns = timestampNs(index);
+  sw.robot_pose = robotPose(sw.t);
+  sw.sensor_pose = sensorPose(sw.t);
+  sw.actor = cv::Mat_<std::int16_t>(H, W, std::int16_t{-1});
+  sw.dynamic = cv::Mat_<std::uint8_t>(H, W, std::uint8_t{0});
+
+  std::mt19937 rng(s_.seed * 1000003u + static_cast<std::uint32_t>(index));
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+
+  core::PointCloud cloud;
+  cloud.reserve(static_cast<std::size_t>(H) * static_cast<std::size_t>(W), true, true);
+  std::vector<std::int16_t> hit_actor;
+  hit_actor.reserve(cloud.x.capacity());
+  std::vector<Posed> world;
+  std::vector<const Posed*> cand;
+  std::vector<double> moving_at(s_.actors.size(), 0);
+  double world_t = -1;
+  Eigen::Isometry3d T_ws = sw.sensor_pose;
+
+  for (int c0 = 0; c0 < W; c0 += kGroup) {
+    const int c1 = std::min(W, c0 + kGroup);
+    // Firing time of this group: the head spins clockwise from azimuth +pi (column W-1).
+    const double frac = (W - 0.5 * (c0 + c1)) / W;
+    const double t = s_.motion_distortion ? sw.t + frac * s_.period() : sw.t;
+    if (t != world_t) {
+      poseWorld(t, world);
+      T_ws = sensorPose(t);
+      for (const Actor& a : s_.actors)
+        moving_at[static_cast<std::size_t>(a.id)] = a.track.speed(t) > s_.moving_speed;
+      world_t = t;
+    }
+    const Eigen::Isometry3d T_sw = T_ws.inverse();
+    const double az_lo = -M_PI + c0 * 2 * M_PI / W, az_hi = -M_PI + c1 * 2 * M_PI / W;
+    cand.clear();
+    for (const Posed& p : world) {  // broad phase: bounding-sphere azimuth extent
+      const Eigen::Vector3d cs = T_sw * p.center;
+      const double dxy = std::hypot(cs.x(), cs.y());
+      const double h = dxy <= p.radius ? M_PI : std::asin(p.radius / dxy);
+      if (overlaps(std::atan2(cs.y(), cs.x()), h, az_lo, az_hi)) cand.push_back(&p);
+    }
+    const Eigen::Matrix3d R = T_ws.linear();
+    Ray ray;
+    ray.origin = T_ws.translation();
+    for (int c = c0; c < c1; c++) {
+      const double az = -M_PI + (c + 0.5) * 2 * M_PI / W;  // Eq. (1) column centre
+      const double ca = std::cos(az), sa = std::sin(az);
+      for (int r = 0; r < H; r++) {
+        const double el = row_elev_[static_cast<std::size_t>(r)];
+        const Eigen::Vector3d ds(std::cos(el) * ca, std::cos(el) * sa, std::sin(el));
+        ray.dir = R * ds;
+        Hit hit, best;
+        double t_max = sm.max_range;
+        const Material* mat = nullptr;
+        int actor = -1;
+        if (intersect(s_.floor, ray, t_max, hit)) {
+          best = hit;
+          t_max = hit.t;
+          mat = &s_.floor_material;
+        }
+        for (const Posed* p : cand)
+          if (intersectPart(p->part, ray, t_max, hit)) {
+            best = hit;
+            t_max = hit.t;
+            mat = &p->part.material;
+            actor = p->actor;
+          }
+        if (!mat || best.t < sm.min_range) continue;
+        const double cosi = std::abs(best.normal.dot(ray.dir));
+        const double refl = reflectivity(*mat, best.uv);
+        const double expected = s_.intensity_gain * refl * (0.3 + 0.7 * cosi) * rangeGain(best.t, s_.intensity_near_range);
+        if (uni(rng) < s_.dropout) continue;                              // random no-return
+        if (cosi < s_.grazing_cos && uni(rng) < 0.8) continue;             // grazing incidence
+        if (expected < 3.0) continue;                                      // too weak to detect
+        const double rng_m = best.t + s_.range_sigma * gauss(rng);
+        if (rng_m <= sm.min_range || rng_m > sm.max_range) continue;
+        const double inten =
+            std::max(0.0, std::round(expected * (1.0 + s_.intensity_noise * gauss(rng)) +
+                                     std::sqrt(expected) * 0.5 * gauss(rng)));
+        const Eigen::Vector3d p = ds * rng_m;
+        cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                        static_cast<float>(p.z()), static_cast<float>(inten),
+                        static_cast<std::uint16_t>(r), static_cast<std::uint16_t>(c));
+        hit_actor.push_back(static_cast<std::int16_t>(actor));
+        if (actor >= 0 && moving_at[static_cast<std::size_t>(actor)]) sw.dynamic(r, c) = 255;
+      }
+    }
+  }
+
+  core::SphericalProjection(sm).organize(cloud, sw.frame);
+  sw.frame.timestamp_ns = sw.timestamp_ns;
+  for (std::size_t i = 0; i < hit_actor.size(); i++)
+    sw.actor(cloud.row[i], cloud.col[i]) = hit_actor[i];
+
+  for (const Actor& a : s_.actors) {
+    ActorState st;
+    st.id = a.id;
+    st.cls = a.cls;
+    const Pose2 p = a.track.at(sw.t);
+    double top = 0;
+    for (const Part& part : a.parts)
+      top = std::max(top, part.kind == Part::Kind::Box ? part.box.center.z() + part.box.half.z()
+                                                       : part.cylinder.z1);
+    st.position = {p.x, p.y, 0.5 * top};
+    st.velocity = a.track.velocity(sw.t);
+    st.moving = st.velocity.norm() > s_.moving_speed;
+    st.points = cv::countNonZero(sw.actor == a.id);
+    sw.actors.push_back(st);
+  }
+  return sw;
+}
+
+}  // namespace dynobj::sim

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/sim/SequenceWriter.h"
+
+#include <dynobj/mrpt/RangeScanLayout.h>
+#include <dynobj/mrpt/TimeConversion.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+
+namespace dynobj::sim {
+namespace {
+
+std::string partial(const std::string& p) { return p + ".partial"; }
+
+void renameInto(const std::string& path) {
+  if (std::rename(partial(path).c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot rename '" + partial(path) + "' to '" + path + "'");
+}
+
+::mrpt::poses::CPose2D planar(const Eigen::Isometry3d& T) {
+  const Eigen::Matrix3d R = T.linear();
+  return {T.translation().x(), T.translation().y(), std::atan2(R(1, 0), R(0, 0))};
+}
+
+}  // namespace
+
+SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario)
+    : s_(scenario), base_(out_dir + "/" + scenario.name), odo_rng_(scenario.seed ^ 0x5EEDu) {
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (!std::filesystem::is_directory(out_dir))
+    throw std::runtime_error("cannot create output directory '" + out_dir + "'");
+  rawlog_ = std::make_unique<::mrpt::io::CFileGZOutputStream>();
+  if (!rawlog_->open(partial(rawlogPath())))
+    throw std::runtime_error("cannot write '" + partial(rawlogPath()) + "'");
+  labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
+  tum_.open(partial(tumPath()));
+  objects_.open(partial(objectsPath()));
+  if (!tum_ || !objects_) throw std::runtime_error("cannot write into '" + out_dir + "'");
+  tum_ << "# timestamp tx ty tz qx qy qz qw  (sensor '" << s_.sensor_label << "' in the world)\n";
+  objects_ << "sweep,timestamp_ns,id,class,x,y,z,vx,vy,speed,moving,points\n";
+}
+
+SequenceWriter::~SequenceWriter() {
+  if (closed_) return;
+  rawlog_.reset();
+  labels_.reset();  // removes its own partial file
+  tum_.close();
+  objects_.close();
+  for (const auto& p : {rawlogPath(), tumPath(), objectsPath()}) std::remove(partial(p).c_str());
+}
+
+void SequenceWriter::write(const SimulatedSweep& sw) {
+  auto arch = ::mrpt::serialization::archiveFrom(*rawlog_);
+  const auto stamp = dynobj::mrpt::fromUnixNs(sw.timestamp_ns);
+  if (s_.odometry) {  // noisy wheel/leg odometry: true increments plus per-sweep noise
+    const ::mrpt::poses::CPose2D truth = planar(sw.robot_pose);
+    if (have_last_) {
+      ::mrpt::poses::CPose2D inc = truth - last_true_;
+      std::normal_distribution<double> g(0.0, 1.0);
+      inc.x(inc.x() + s_.odometry_sigma_xy * g(odo_rng_));
+      inc.y(inc.y() + s_.odometry_sigma_xy * g(odo_rng_));
+      inc.phi(inc.phi() + s_.odometry_sigma_yaw * g(odo_rng_));
+      odometry_ = odometry_ + inc;
+    } else {
+      odometry_ = truth;
+    }
+    last_true_ = truth;
+    have_last_ = true;
+    ::mrpt::obs::CObservationOdometry odo;
+    odo.sensorLabel = "ODOMETRY";
+    odo.timestamp = stamp;
+    odo.odometry = odometry_;
+    arch << odo;
+  }
+  ::mrpt::obs::CObservation3DRangeScan scan;
+  dynobj::mrpt::frameToRangeScan(sw.frame, scan);
+  scan.sensorLabel = s_.sensor_label;
+  scan.timestamp = stamp;
+  scan.sensorPose = ::mrpt::poses::CPose3D(s_.mount.x(), s_.mount.y(), s_.mount.z(), 0, 0, 0);
+  arch << scan;
+
+  labels_->write(sw.timestamp_ns, core::pixelsOfMask(sw.dynamic));
+
+  const Eigen::Quaterniond q(sw.sensor_pose.linear());
+  const Eigen::Vector3d& p = sw.sensor_pose.translation();
+  tum_ << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "."
+       << std::setw(9) << std::setfill('0') << sw.timestamp_ns % 1000000000 << std::setfill(' ')
+       << std::setprecision(6) << " " << p.x() << " " << p.y() << " " << p.z() << " " << q.x()
+       << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+  for (const ActorState& a : sw.actors)
+    objects_ << sw.index << "," << sw.timestamp_ns << "," << a.id << "," << toString(a.cls) << ","
+             << std::setprecision(3) << a.position.x() << "," << a.position.y() << ","
+             << a.position.z() << "," << a.velocity.x() << "," << a.velocity.y() << ","
+             << a.velocity.norm() << "," << (a.moving ? 1 : 0) << "," << a.points << "\n";
+}
+
+void SequenceWriter::close() {
+  rawlog_->close();
+  rawlog_.reset();
+  labels_->close();
+  tum_.close();
+  objects_.close();
+  if (!tum_ || !objects_) throw std::runtime_error("error writing '" + base_ + ".gt.*'");
+  renameInto(rawlogPath());
+  renameInto(tumPath());
+  renameInto(objectsPath());
+  closed_ = true;
+}
+
+}  // namespace dynobj::sim

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/LabelFile.h>
+#include <dynobj/mrpt/ObservationConverter.h>
+#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/sim/LidarSimulator.h>
+#include <dynobj/sim/SequenceWriter.h>
+#include <gtest/gtest.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/system/filesystem.h>
+
+#include <cmath>
+#include <fstream>
+
+using namespace dynobj;
+using namespace dynobj::sim;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+/// 8 beams from +14 to -14 deg (4 deg apart), 64 columns, written to a temporary preset.
+std::string tinySensorFile() {
+  const std::string path = ::mrpt::system::getTempFileName() + "_tiny.ini";
+  std::ofstream(path) << "[sensor]\nmodel = tiny\nrows = 8\ncols = 64\nelevation_top = 14\n"
+                         "elevation_bottom = -14\nmin_range = 0.2\nmax_range = 80\n";
+  return path;
+}
+
+/// A noiseless scenario: sensor at 1 m height, standing at the origin looking along +X.
+std::string base(const std::string& extra,
+                 const std::string& platform = "{trajectory: {type: stationary, at: [0, 0]}}") {
+  return "name: t\nframes: 10\nsensor: " + tinySensorFile() +
+         "\nmount: [0, 0, 1.0]\nnoise: {range_sigma: 0, dropout: 0, grazing_cos: 0}\n"
+         "odometry: {enabled: false}\n"
+         "floor: {size: [100, 100]}\n"
+         "platform: " + platform + "\n" + extra;
+}
+
+Scenario load(const std::string& text) {
+  return Scenario::fromYamlText(text, DYNOBJ_SHARE_DIR, {}, "test.yaml");
+}
+
+}  // namespace
+
+TEST(LidarSimulator, FloorAtKnownDistance) {
+  const LidarSimulator sim(load(base("")));
+  const auto sw = sim.simulate(0);
+  const auto elev = sim.scenario().sensor.rowElevations();
+  for (int r = 0; r < 8; r++) {
+    SCOPED_TRACE(r);
+    if (elev[static_cast<std::size_t>(r)] >= 0) {
+      EXPECT_EQ(cv::countNonZero(sw.frame.valid.row(r)), 0);  // nothing above the horizon
+      continue;
+    }
+    const double expected = 1.0 / std::sin(-elev[static_cast<std::size_t>(r)]);  // h / sin(-el)
+    for (int c = 0; c < 64; c++) {
+      ASSERT_TRUE(sw.frame.isValid(r, c));
+      EXPECT_NEAR(sw.frame.range(r, c), expected, 1e-4);
+      EXPECT_NEAR(sw.frame.xyz(r, c)[2], -1.0, 1e-4);
+    }
+  }
+}
+
+TEST(LidarSimulator, CylinderAtKnownDistanceAndLabels) {
+  // A moving pedestrian straight ahead at 6 m, a standing one on the left, and one hidden
+  // behind a wall on the right.
+  const LidarSimulator sim(load(base(
+      "static:\n  - {box: {center: [0, -5, 2], size: [20, 0.2, 4]}}\n"
+      "  - {cylinder: {center: [-8, 0], radius: 0.5, height: 3}}\n"
+      "actors:\n"
+      "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[6, -1], [6, 1]], speed: 0.5}}\n"
+      "  - {class: pedestrian, height: 1.75, trajectory: {type: stationary, at: [0, 4]}}\n"
+      "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[-3, -8], [3, -8]], speed: 1}}\n")));
+  const auto sw = sim.simulate(2);
+  // Static cylinder (r = 0.5) 8 m behind the sensor. Column 0's ray is pi/64 off the direction
+  // to its axis: horizontal distance 8 cos(d) - sqrt(0.25 - 64 sin^2(d)), at elevation 2 deg.
+  const double d = M_PI / 64;
+  const double t_h = 8 * std::cos(d) - std::sqrt(0.25 - 64 * std::sin(d) * std::sin(d));
+  EXPECT_NEAR(sw.frame.range(3, 0), t_h / std::cos(2 * kDeg), 1e-4);
+  ASSERT_EQ(sw.actors.size(), 3u);
+  EXPECT_TRUE(sw.actors[0].moving);
+  EXPECT_FALSE(sw.actors[1].moving);
+  EXPECT_TRUE(sw.actors[2].moving);
+  EXPECT_GT(sw.actors[0].points, 3);
+  EXPECT_GT(sw.actors[1].points, 3);
+  EXPECT_EQ(sw.actors[2].points, 0);  // occluded by the wall: no pixels, no labels
+  for (int r = 0; r < 8; r++)
+    for (int c = 0; c < 64; c++) {
+      const bool dyn = sw.dynamic(r, c) != 0;
+      EXPECT_EQ(dyn, sw.actor(r, c) == 0) << r << "," << c;  // exactly the moving actor's pixels
+    }
+}
+
+TEST(LidarSimulator, DeterministicPerSweep) {
+  const LidarSimulator sim(Scenario::fromYamlFile(
+      std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml", DYNOBJ_SHARE_DIR, {{"frames", "10"}}));
+  const auto a = sim.simulate(5);
+  sim.simulate(3);
+  const auto b = sim.simulate(5);
+  EXPECT_EQ(cv::norm(a.frame.range, b.frame.range, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.frame.intensity, b.frame.intensity, cv::NORM_INF), 0.0);
+  EXPECT_GT(a.frame.validCount(), 20000u);
+  EXPECT_GT(cv::countNonZero(a.dynamic), 0);
+}
+
+TEST(LidarSimulator, SequenceFilesRoundTrip) {
+  const LidarSimulator sim(load(base(
+      "actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, 2]], speed: 1}}\n",
+      "{trajectory: {type: waypoints, points: [[0, 0], [3, 0]], speed: 1, loop: false}}")));
+  const std::string dir = ::mrpt::system::getTempFileName() + "_seq";
+  std::vector<SimulatedSweep> sweeps;
+  {
+    SequenceWriter w(dir, sim.scenario());
+    for (int k = 0; k < 10; k++) {
+      sweeps.push_back(sim.simulate(k));
+      w.write(sweeps.back());
+    }
+    w.close();
+  }
+  // Labels: one line per sweep with exactly the dynamic pixels.
+  const auto labels = core::LabelFile::read(dir + "/t.gt.labels");
+  ASSERT_EQ(labels.sweeps.size(), 10u);
+  for (int k = 0; k < 10; k++) {
+    EXPECT_EQ(labels.sweeps[k].timestamp_ns, sweeps[k].timestamp_ns);
+    EXPECT_EQ(labels.sweeps[k].pixels, core::pixelsOfMask(sweeps[k].dynamic));
+  }
+  // TUM: the scenario's sensor trajectory (platform moves 1 m/s along +X, sensor 1 m up).
+  std::ifstream tum(dir + "/t.gt.tum");
+  std::string line;
+  std::getline(tum, line);  // header
+  for (int k = 0; k < 10; k++) {
+    double ts, x, y, z, qx, qy, qz, qw;
+    tum >> ts >> x >> y >> z >> qx >> qy >> qz >> qw;
+    EXPECT_NEAR(ts, 1.7e9 + 0.1 * k, 1e-6);
+    EXPECT_NEAR(x, 0.1 * k, 1e-6);
+    EXPECT_NEAR(z, 1.0, 1e-6);
+    EXPECT_NEAR(qw, 1.0, 1e-6);
+  }
+  // Rawlog: the scans convert back to the simulated frames.
+  dynobj::mrpt::RawlogReader reader(dir + "/t.rawlog");
+  dynobj::mrpt::RawlogEntry e;
+  int scans = 0;
+  while (reader.next(e)) {
+    auto scan = std::dynamic_pointer_cast<::mrpt::obs::CObservation3DRangeScan>(e.observation);
+    ASSERT_TRUE(scan);
+    core::LidarFrame f;
+    dynobj::mrpt::ObservationConverter().convert(*scan, f);
+    EXPECT_EQ(f.validCount(), sweeps[static_cast<std::size_t>(scans)].frame.validCount());
+    EXPECT_EQ(f.timestamp_ns, sweeps[static_cast<std::size_t>(scans)].timestamp_ns);
+    scans++;
+  }
+  EXPECT_EQ(scans, 10);
+  // objects CSV: header + one row per sweep and actor.
+  std::ifstream csv(dir + "/t.gt.objects.csv");
+  int lines = 0;
+  while (std::getline(csv, line)) lines++;
+  EXPECT_EQ(lines, 1 + 10);
+}
