@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Paper III-B-2, Eq. (6)-(7): Euclidean clustering of the foreground points with separate
+// horizontal (d_xy) and vertical (d_z) thresholds: two points are neighbours when
+// d_xy <= horizontal_distance and d_z <= vertical_distance; clusters are the connected components
+// (single linkage, the usual reading of Eq. 7). Neighbours are found either in the range image
+// around each pixel (default: the window spans epsilon at the pixel's range, O(n)) or with a
+// nanoflann KD-tree (exact for any spacing; slower on dense features).
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+
+namespace dynobj::core {
+
+struct ClusteringParams : public StageParams {
+  double horizontal_distance = 0.35;  ///< epsilon_xy [m]
+  double vertical_distance = 0.6;     ///< epsilon_z [m]
+  int min_points = 4;                 ///< smaller clusters are dropped
+  int max_points = 300;               ///< larger clusters are dropped (walls, shelves, the floor)
+  bool kdtree = true;                 ///< exact KD-tree search (false: faster image window)
+  int max_window = 16;                ///< image search: at most this many columns each side
+
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void validate() const override;
+};
+
+struct Cluster {
+  std::vector<int> pixels;            ///< pixel indices (row * W + col) of its points
+  Eigen::Vector3d centroid{0, 0, 0};  ///< sensor frame [m]
+  Eigen::Vector3d min{0, 0, 0}, max{0, 0, 0};  ///< axis-aligned bounds
+  Eigen::Vector2d main_direction{1, 0};  ///< Eq. (22): horizontal PCA main axis (unit)
+  double elongation = 1.0;  ///< sqrt(lambda1 / lambda2) of the horizontal covariance
+  double length = 0.0;      ///< extent along the main axis [m]
+};
+
+/// Fills centroid, bounds and PCA fields of `c` from its pixels.
+void computeClusterShape(const LidarFrame& frame, Cluster& c);
+
+class Clusterer {
+ public:
+  explicit Clusterer(const ClusteringParams& p = {});
+  /// Clusters the valid pixels set in `features` (255).
+  void cluster(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& features,
+               std::vector<Cluster>& out);
+
+ private:
+  void clusterImage(const LidarFrame& frame, std::vector<int>& label);
+  void clusterKdTree(const LidarFrame& frame, std::vector<int>& label);
+
+  ClusteringParams p_;
+  std::vector<int> pixels_;
+  cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
+  std::vector<int> count_, slot_;
+  std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
+};
+
+}  // namespace dynobj::core

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The paper's pipeline (Du & Beltrame, Section III), one LidarFrame at a time, with its state
+// (tracks, windows, previous features) kept across frames. See docs/algorithm.md.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynobj/core/ClusterAssociator.h"
+#include "dynobj/core/Clusterer.h"
+#include "dynobj/core/EgoMotionEstimator.h"
+#include "dynobj/core/ForegroundExtractor.h"
+#include "dynobj/core/FrameChain.h"
+#include "dynobj/core/FreeSpaceCheck.h"
+#include "dynobj/core/GroundSegmenter.h"
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/MovementAnalyzer.h"
+#include "dynobj/core/RegionGrower.h"
+#include "dynobj/core/TrackManager.h"
+
+namespace dynobj::core {
+
+/// Every stage's parameters. INI layout: one section per stage, named
+/// <prefix>foreground, <prefix>ground, <prefix>ego_motion, <prefix>clustering,
+/// <prefix>association, <prefix>movement, <prefix>free_space, <prefix>tracking,
+/// <prefix>region_growing.
+struct DetectorParams {
+  ForegroundParams foreground;
+  GroundParams ground;
+  EgoMotionParams ego_motion;
+  ClusteringParams clustering;
+  AssociationParams association;
+  MovementParams movement;
+  FreeSpaceParams free_space;
+  TrackingParams tracking;
+  RegionGrowingParams region_growing;
+  bool exclude_ground_features = true;  ///< [foreground] no features on ground pixels
+
+  void load(const ::mrpt::config::CConfigFileBase& c, const std::string& prefix = "");
+  void save(::mrpt::config::CConfigFileBase& c, const std::string& prefix = "") const;
+  void validate() const;
+};
+
+struct TrackedObject {
+  int id = 0;
+  Eigen::Vector3d centroid{0, 0, 0};  ///< sensor frame [m]
+  Eigen::Vector2d velocity{0, 0};     ///< sensor frame [m/s]
+  Eigen::Vector3d box_min{0, 0, 0}, box_max{0, 0, 0};
+  int points = 0;       ///< pixels of the object this frame (grown when dynamic)
+  bool dynamic = false;
+  int age = 0;          ///< frames since first seen
+};
+
+struct StageTimings {
+  double foreground = 0, ego_motion = 0, clustering = 0, association = 0, movement = 0,
+         ground = 0, region_growing = 0, total = 0;  ///< [ms]
+};
+
+struct DetectionResult {
+  std::int64_t timestamp_ns = 0;
+  long frame_index = 0;
+  cv::Mat_<std::uint8_t> dynamic;   ///< 255 = dynamic pixel
+  cv::Mat_<std::uint8_t> features;  ///< foreground feature pixels (Eq. 4), for inspection
+  cv::Mat_<std::uint8_t> seeds;     ///< points of the accepted clusters (region-growing seeds)
+  std::vector<TrackedObject> objects;  ///< tracks seen this frame
+  EgoMotion ego_motion;
+  StageTimings timings;
+};
+
+class DynamicObjectDetector {
+ public:
+  explicit DynamicObjectDetector(const DetectorParams& params = {});
+
+  /// Processes the next frame. `external_motion`: T_{prev<-cur} from odometry or SLAM, used
+  /// instead of the intensity ego-motion. The returned reference is valid until the next call.
+  const DetectionResult& process(const LidarFrame& frame,
+                                 const std::optional<Eigen::Isometry3d>& external_motion = std::nullopt);
+  void reset();
+
+  const DetectorParams& params() const { return params_; }
+
+ private:
+  EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
+  void collectObjects(const LidarFrame& frame, const std::vector<int>& grown);
+
+  DetectorParams params_;
+  ForegroundExtractor foreground_;
+  GroundSegmenter ground_;
+  EgoMotionEstimator ego_;
+  Clusterer clusterer_;
+  ClusterAssociator associator_;
+  MovementAnalyzer movement_;
+  FreeSpaceCheck free_space_;
+  TrackManager tracks_;
+  RegionGrower grower_;
+  FrameChain chain_;
+
+  DetectionResult result_;
+  std::vector<Cluster> clusters_;
+  cv::Mat_<std::uint8_t> ground_mask_, exclude_, prev_dynamic_;
+  cv::Mat_<int> owner_;
+  std::vector<int> seed_track_;
+  long frame_index_ = -1;
+  std::int64_t last_stamp_ = 0;
+  Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace dynobj::core

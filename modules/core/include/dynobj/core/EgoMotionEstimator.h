@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Paper III-B-1, Eq. (5): ego-motion between consecutive frames from ORB features of the
+// intensity image, lifted to 3D through the frame's pixel -> point map, then a rigid SE(3) by
+// RANSAC + closed-form least squares (Umeyama). Image preparation for a 64-row image: see
+// docs/algorithm.md (vertical x2 upsampling, 32 px wrap/reflect padding so ORB's 31 px border and
+// patch fit, a mask away from no-return borders and from the last frame's dynamic objects).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+
+namespace dynobj::core {
+
+struct EgoMotionParams : public StageParams {
+  int features = 800;               ///< ORB nfeatures
+  double scale_factor = 1.2;        ///< ORB scaleFactor
+  int levels = 1;                   ///< ORB nlevels (the 32 px padding gives level 0 room)
+  int fast_threshold = 10;          ///< ORB fastThreshold (10 suits sparse indoor scenes)
+  int upsample = 1;                 ///< vertical upsampling factor (1 = none; 2 = same accuracy, slower)
+  double ratio = 0.8;               ///< Lowe ratio test
+  int border = 2;                   ///< [px] no keypoint this close to a no-return pixel
+  double inlier_distance = 0.10;    ///< [m] RANSAC inlier threshold at close range ...
+  double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
+  int iterations = 200;             ///< RANSAC iterations
+  int min_inliers = 25;             ///< fewer -> ego-motion failed
+  double min_inlier_ratio = 0.3;    ///< inliers / matches below this -> failed
+  int seed = 1;                     ///< RANSAC random seed
+
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void validate() const override;
+};
+
+/// The motion between the previous frame and the current one.
+struct EgoMotion {
+  /// T_{prev<-cur}: maps points of the current frame into the previous frame (the robot's motion).
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  bool ok = false;          ///< estimated with enough inliers (or given externally)
+  int matches = 0;          ///< ratio-test matches with 3D points on both sides
+  int inliers = 0;
+  std::string source = "none";  ///< "intensity", "external", "constant-velocity", "none"
+};
+
+class EgoMotionEstimator {
+ public:
+  explicit EgoMotionEstimator(const EgoMotionParams& p = {});
+
+  /// Detects ORB features on `intensity` (0..255, the normalised intensity of `frame`) away from
+  /// `exclude` (may be empty), matches them with the previous frame's and estimates the motion.
+  /// The first call (no previous frame) returns ok = false, source "none".
+  EgoMotion estimate(const LidarFrame& frame, const cv::Mat_<float>& intensity,
+                     const cv::Mat_<std::uint8_t>& exclude);
+
+  /// Forgets previous-frame keypoints lying on `dynamic` pixels (call once the frame's dynamic
+  /// mask is known, so the next estimate matches static structure only).
+  void dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic);
+
+  void reset();
+
+ private:
+  struct Features {
+    std::vector<cv::Point3f> points;  ///< 3D point of each keypoint
+    std::vector<int> pixels;          ///< its pixel index
+    cv::Mat descriptors;
+  };
+  void detect(const LidarFrame& frame, const cv::Mat_<float>& intensity,
+              const cv::Mat_<std::uint8_t>& exclude, Features& out);
+
+  EgoMotionParams p_;
+  cv::Ptr<cv::ORB> orb_;
+  cv::BFMatcher matcher_;
+  Features prev_, cur_;
+  bool have_prev_ = false;
+  std::mt19937 rng_;
+  cv::Mat img8_, up_, padded_, mask_, mask_up_, mask_pad_;
+};
+
+}  // namespace dynobj::core

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Beyond the paper (docs/algorithm.md): a visibility test for moving candidates. The candidate's
+// points are carried back into the frame where its sliding window starts (through the same
+// accumulated transforms as Eq. 16) and projected with Eq. (1). Where that old frame saw farther
+// along the same ray, the space the object occupies now was free then: it moved in. Where the old
+// frame saw a surface at the same range, the object was already there: the apparent motion of its
+// centroid came from viewpoint changes (the visible faces of a pillar turn as the robot walks by).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <deque>
+#include <utility>
+
+#include "dynobj/core/Clusterer.h"
+#include "dynobj/core/FrameChain.h"
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+#include "dynobj/core/SphericalProjection.h"
+
+namespace dynobj::core {
+
+struct FreeSpaceParams : public StageParams {
+  bool enabled = true;
+  double margin = 0.3;          ///< [m] ranges closer than margin + range_factor x range agree
+  double range_factor = 0.02;
+  double min_free_ratio = 0.5;  ///< free / (free + occupied) needed to stay a moving candidate
+  int min_evidence = 3;         ///< fewer decisive points: no verdict (the candidate is kept)
+  int lookback = 10;            ///< compare with the frame this many frames back (or the oldest kept)
+
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void validate() const override;
+};
+
+struct FreeSpaceEvidence {
+  int free = 0, occupied = 0, unknown = 0;
+  bool supportsMotion(const FreeSpaceParams& p) const;
+};
+
+class FreeSpaceCheck {
+ public:
+  explicit FreeSpaceCheck(const FreeSpaceParams& p = {}, std::size_t history = 16);
+
+  /// Keeps this frame's range image (bounded history).
+  void remember(long index, const LidarFrame& frame);
+  /// Evidence for `cluster` (pixels of `frame`, frame index `current`) against frame `past`.
+  FreeSpaceEvidence evidence(const LidarFrame& frame, long current, const Cluster& cluster,
+                             long past, const FrameChain& chain) const;
+  const FreeSpaceParams& params() const { return p_; }
+
+ private:
+  FreeSpaceParams p_;
+  std::size_t history_;
+  std::deque<std::pair<long, cv::Mat_<float>>> ranges_;
+};
+
+}  // namespace dynobj::core

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Paper III-C-3, Eq. (24)-(25): from the seed pixels of each dynamic object, add 8-neighbours
+// (Eq. 24) of the range image whose 3D point lies within epsilon of an object point (Eq. 25; here
+// epsilon grows with the angular gap between the two rays at that range, and a depth jump along
+// the ray also stops the growth),
+// never entering ground pixels, until nothing is added. The image wraps around horizontally.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+
+namespace dynobj::core {
+
+struct RegionGrowingParams : public StageParams {
+  double distance = 0.25;     ///< epsilon [m] between neighbouring points of one object
+  double range_factor = 1.2;  ///< epsilon = distance + range_factor x (gap between the rays at that range)
+  double depth_factor = 0.02; ///< and neighbours' ranges differ by at most distance + depth_factor x range
+  double max_extent = 1.5;    ///< [m] no pixel farther than this (horizontally) from the seeds' centre
+  int max_pixels = 20000;     ///< safety limit per object
+
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void validate() const override;
+};
+
+class RegionGrower {
+ public:
+  explicit RegionGrower(const RegionGrowingParams& p = {});
+
+  /// Grows every object's seeds (pixel indices row * W + col) over `frame`, skipping `ground`
+  /// pixels. Adds the grown pixels to `mask` (255); `owner` (CV_32S, -1 = none) tells which
+  /// object (index into `seeds`) took each pixel. Returns the pixel count of each object.
+  std::vector<int> grow(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& ground,
+                        const std::vector<std::vector<int>>& seeds, cv::Mat_<std::uint8_t>& mask,
+                        cv::Mat_<int>& owner);
+
+ private:
+  RegionGrowingParams p_;
+  std::vector<int> queue_;
+};
+
+}  // namespace dynobj::core

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The tracks: one per associated cluster, each with its sliding window of observations. Beyond
+// the paper (its stated limits, both switchable): a constant-velocity Kalman filter predicts a
+// track through short occlusions so it keeps its identity and window, and hysteresis keeps a
+// moving object's state from flickering frame to frame.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <deque>
+#include <vector>
+
+#include "dynobj/core/Clusterer.h"
+#include "dynobj/core/MovementAnalyzer.h"
+#include "dynobj/core/Params.h"
+
+namespace dynobj::core {
+
+struct TrackingParams : public StageParams {
+  bool prediction = true;          ///< Kalman prediction (false: the paper's Eq. 8 only, no coasting)
+  int max_missed = 5;              ///< frames a track coasts unseen before it is dropped
+  double process_noise = 2.0;      ///< [m/s^2] white acceleration of the constant-velocity model
+  double measurement_noise = 0.1;  ///< [m] centroid noise
+  bool hysteresis = true;          ///< confirm / release counters (false: state = this frame's test)
+  int confirm_frames = 2;          ///< consecutive moving decisions to become dynamic
+  int release_frames = 4;          ///< consecutive static decisions to become static again
+
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void validate() const override;
+};
+
+struct Track {
+  int id = 0;
+  int age = 0;       ///< frames since the track was born
+  int missed = 0;    ///< consecutive frames without a cluster
+  int cluster = -1;  ///< index of this frame's cluster, -1 when unseen
+  std::deque<WindowEntry> window;  ///< observations (frame, centroid in that frame), bounded
+  Eigen::Vector4d state{0, 0, 0, 0};  ///< x, y, vx, vy in the current frame
+  Eigen::Matrix4d cov = Eigen::Matrix4d::Identity();
+  double z = 0;      ///< last observed centroid height
+  bool dynamic = false;
+  int positives = 0, negatives = 0;
+  MovementDecision decision;
+
+  Eigen::Vector3d position() const { return {state(0), state(1), z}; }
+  Eigen::Vector2d velocity() const { return state.tail<2>(); }
+};
+
+class TrackManager {
+ public:
+  TrackManager(const TrackingParams& p, int window);
+
+  /// Moves every track into the current frame: T_{prev<-cur} = `motion` (Eq. 8), then the
+  /// constant-velocity prediction over `dt` seconds when enabled.
+  void predict(const Eigen::Isometry3d& motion, double dt);
+  /// Predicted centroids, in track order (the "R c + t" of Eq. 8).
+  std::vector<Eigen::Vector3d> predicted() const;
+  /// Applies the association: `cluster_to_track[m]` = track index or -1 (new track).
+  void update(long frame, const std::vector<Cluster>& clusters, const std::vector<int>& cluster_to_track);
+  /// Sets a seen track's moving state from this frame's decision (with hysteresis).
+  void decide(Track& t, const MovementDecision& d);
+  void reset();
+
+  std::vector<Track>& tracks() { return tracks_; }
+  const std::vector<Track>& tracks() const { return tracks_; }
+
+ private:
+  TrackingParams p_;
+  std::size_t window_;
+  std::vector<Track> tracks_;
+  int next_id_ = 0;
+};
+
+}  // namespace dynobj::core

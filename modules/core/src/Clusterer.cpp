@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/Clusterer.h"
+
+#include <Eigen/Eigenvalues>
+#include <nanoflann.hpp>
+
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+namespace {
+
+/// nanoflann dataset adaptor over the scaled foreground points.
+struct PointsAdaptor {
+  const std::vector<Eigen::Vector3f>& pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return pts[i][static_cast<Eigen::Index>(dim)]; }
+  template <class BBOX>
+  bool kdtree_get_bbox(BBOX& /*bb*/) const {
+    return false;
+  }
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
+                                                   PointsAdaptor, 3>;
+
+}  // namespace
+
+void ClusteringParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                          const std::string& s) {
+  horizontal_distance = readDouble(c, s, "horizontal_distance", horizontal_distance);
+  vertical_distance = readDouble(c, s, "vertical_distance", vertical_distance);
+  min_points = readInt(c, s, "min_points", min_points);
+  max_points = readInt(c, s, "max_points", max_points);
+  kdtree = readBool(c, s, "kdtree", kdtree);
+  max_window = readInt(c, s, "max_window", max_window);
+  validate();
+}
+
+void ClusteringParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
+  c.write(s, "horizontal_distance", horizontal_distance);
+  c.write(s, "vertical_distance", vertical_distance);
+  c.write(s, "min_points", min_points);
+  c.write(s, "max_points", max_points);
+  c.write(s, "kdtree", kdtree);
+  c.write(s, "max_window", max_window);
+}
+
+void ClusteringParams::validate() const {
+  requirePositive("horizontal_distance", horizontal_distance);
+  requirePositive("vertical_distance", vertical_distance);
+  requireInRange("min_points", min_points, 1, 1000000);
+  requireInRange("max_points", max_points, min_points, 100000000);
+  requireInRange("max_window", max_window, 1, 1000);
+}
+
+void computeClusterShape(const LidarFrame& f, Cluster& c) {
+  const int W = f.cols();
+  Eigen::Vector3d sum(0, 0, 0);
+  c.min = Eigen::Vector3d::Constant(1e18);
+  c.max = Eigen::Vector3d::Constant(-1e18);
+  for (int px : c.pixels) {
+    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const Eigen::Vector3d q(p[0], p[1], p[2]);
+    sum += q;
+    c.min = c.min.cwiseMin(q);
+    c.max = c.max.cwiseMax(q);
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(1, c.pixels.size()));
+  c.centroid = sum / n;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (int px : c.pixels) {
+    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const Eigen::Vector2d d(p[0] - c.centroid.x(), p[1] - c.centroid.y());
+    cov += d * d.transpose();
+  }
+  cov /= n;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);  // Eq. (22): PCA
+  c.main_direction = es.eigenvectors().col(1);                     // largest eigenvalue
+  const double l1 = std::max(es.eigenvalues()(1), 0.0), l2 = std::max(es.eigenvalues()(0), 1e-6);
+  c.elongation = std::sqrt(l1 / l2);
+  double lo = 1e18, hi = -1e18;
+  for (int px : c.pixels) {
+    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const double t = (p[0] - c.centroid.x()) * c.main_direction.x() +
+                     (p[1] - c.centroid.y()) * c.main_direction.y();
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+  }
+  c.length = c.pixels.empty() ? 0.0 : hi - lo;
+}
+
+Clusterer::Clusterer(const ClusteringParams& p) : p_(p) { p_.validate(); }
+
+namespace {
+
+/// Union-find root with path halving.
+int root(std::vector<int>& parent, int x) {
+  while (parent[static_cast<std::size_t>(x)] != x)
+    x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+  return x;
+}
+
+}  // namespace
+
+void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& features,
+                        std::vector<Cluster>& out) {
+  out.clear();
+  pixels_.clear();
+  pts_.clear();
+  const int n_px = f.rows() * f.cols();
+  const std::uint8_t* m = features.ptr<std::uint8_t>(0);
+  const std::uint8_t* v = f.valid.ptr<std::uint8_t>(0);
+  for (int i = 0; i < n_px; i++)
+    if (m[i] && v[i]) pixels_.push_back(i);
+  if (pixels_.empty()) return;
+  std::vector<int> label;
+  if (p_.kdtree) clusterKdTree(f, label);
+  else clusterImage(f, label);
+  // Gather the components (labels are union-find roots) and keep those of a plausible size.
+  count_.assign(pixels_.size(), 0);
+  for (int l : label) count_[static_cast<std::size_t>(l)]++;
+  slot_.assign(pixels_.size(), -1);
+  for (std::size_t i = 0; i < pixels_.size(); i++) {
+    const auto l = static_cast<std::size_t>(label[i]);
+    if (count_[l] < p_.min_points || count_[l] > p_.max_points) continue;
+    if (slot_[l] < 0) {
+      slot_[l] = static_cast<int>(out.size());
+      out.emplace_back();
+      out.back().pixels.reserve(static_cast<std::size_t>(count_[l]));
+    }
+    out[static_cast<std::size_t>(slot_[l])].pixels.push_back(pixels_[i]);
+  }
+  for (Cluster& c : out) computeClusterShape(f, c);
+}
+
+void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
+  const int H = f.rows(), W = f.cols();
+  index_.create(H, W);
+  index_.setTo(-1);
+  for (std::size_t i = 0; i < pixels_.size(); i++)
+    index_(pixels_[i] / W, pixels_[i] % W) = static_cast<int>(i);
+  std::vector<int> parent(pixels_.size());
+  for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
+  const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
+  const double exy = p_.horizontal_distance, ez = p_.vertical_distance;
+  for (std::size_t i = 0; i < pixels_.size(); i++) {
+    const int r = pixels_[i] / W, c = pixels_[i] % W;
+    const cv::Vec3f& p = f.xyz(r, c);
+    const double rng = std::max(0.1f, f.range(r, c));
+    // Pixels that can hold a point within (eps_xy, eps_z) of this one, looking forward only
+    // (each pair is examined once): this row to the right, and the rows below.
+    const int wc = std::clamp(static_cast<int>(std::ceil(exy / (rng * gap_h))), 1, p_.max_window);
+    const int wr = std::clamp(static_cast<int>(std::ceil(std::max(exy, ez) / (rng * gap_v))), 1, 4);
+    for (int dr = 0; dr <= wr && r + dr < H; dr++) {
+      for (int dc = (dr == 0 ? 1 : -wc); dc <= wc; dc++) {
+        const int j = index_(r + dr, (c + dc + W) % W);
+        if (j < 0) continue;
+        const cv::Vec3f& q = f.xyz(r + dr, (c + dc + W) % W);
+        if (std::hypot(q[0] - p[0], q[1] - p[1]) > exy || std::abs(q[2] - p[2]) > ez) continue;  // Eq. (6)-(7)
+        const int a = root(parent, static_cast<int>(i)), b = root(parent, j);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      }
+    }
+  }
+  label.resize(pixels_.size());
+  for (std::size_t i = 0; i < pixels_.size(); i++) label[i] = root(parent, static_cast<int>(i));
+}
+
+void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
+  const int W = f.cols();
+  const float zs = static_cast<float>(p_.horizontal_distance / p_.vertical_distance);
+  pts_.clear();
+  for (int px : pixels_) {
+    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    pts_.emplace_back(p[0], p[1], p[2] * zs);
+  }
+  const PointsAdaptor adaptor{pts_};
+  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  // Eq. (6)-(7) neighbours: a ball of radius sqrt(2) eps_xy in the scaled space contains the
+  // cylinder {d_xy <= eps_xy, d_z <= eps_z}; each candidate is then checked exactly.
+  const float eps = static_cast<float>(p_.horizontal_distance);
+  std::vector<int> parent(pts_.size());
+  for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
+  std::vector<std::pair<std::uint32_t, float>> found;
+  nanoflann::SearchParams sp;
+  sp.sorted = false;
+  for (std::size_t i = 0; i < pts_.size(); i++) {
+    const Eigen::Vector3f& p = pts_[i];
+    found.clear();
+    tree.radiusSearch(p.data(), 2.0f * eps * eps, found, sp);
+    for (const auto& [j, d2] : found) {
+      if (j <= i) continue;
+      const Eigen::Vector3f& q = pts_[j];
+      if (std::hypot(q.x() - p.x(), q.y() - p.y()) > eps || std::abs(q.z() - p.z()) > eps) continue;
+      const int a = root(parent, static_cast<int>(i)), b = root(parent, static_cast<int>(j));
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  }
+  label.resize(pts_.size());
+  for (std::size_t i = 0; i < pts_.size(); i++) label[i] = root(parent, static_cast<int>(i));
+}
+
+}  // namespace dynobj::core

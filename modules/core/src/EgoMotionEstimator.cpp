@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/EgoMotionEstimator.h"
+
+#include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+namespace {
+
+constexpr int kPad = 32;  ///< >= ORB's edgeThreshold / patchSize (31)
+
+/// Closed-form rigid transform (Umeyama, no scale) mapping src[i] onto dst[i].
+Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
+                           const std::vector<Eigen::Vector3d>& dst) {
+  Eigen::Matrix3Xd a(3, static_cast<Eigen::Index>(src.size())), b(3, a.cols());
+  for (Eigen::Index i = 0; i < a.cols(); i++) {
+    a.col(i) = src[static_cast<std::size_t>(i)];
+    b.col(i) = dst[static_cast<std::size_t>(i)];
+  }
+  Eigen::Isometry3d T;
+  T.matrix() = Eigen::umeyama(a, b, false);
+  return T;
+}
+
+}  // namespace
+
+void EgoMotionParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                         const std::string& s) {
+  features = readInt(c, s, "features", features);
+  scale_factor = readDouble(c, s, "scale_factor", scale_factor);
+  levels = readInt(c, s, "levels", levels);
+  fast_threshold = readInt(c, s, "fast_threshold", fast_threshold);
+  upsample = readInt(c, s, "upsample", upsample);
+  ratio = readDouble(c, s, "ratio", ratio);
+  border = readInt(c, s, "border", border);
+  inlier_distance = readDouble(c, s, "inlier_distance", inlier_distance);
+  inlier_range_factor = readDouble(c, s, "inlier_range_factor", inlier_range_factor);
+  iterations = readInt(c, s, "iterations", iterations);
+  min_inliers = readInt(c, s, "min_inliers", min_inliers);
+  min_inlier_ratio = readDouble(c, s, "min_inlier_ratio", min_inlier_ratio);
+  seed = readInt(c, s, "seed", seed);
+  validate();
+}
+
+void EgoMotionParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
+                                       const std::string& s) const {
+  c.write(s, "features", features);
+  c.write(s, "scale_factor", scale_factor);
+  c.write(s, "levels", levels);
+  c.write(s, "fast_threshold", fast_threshold);
+  c.write(s, "upsample", upsample);
+  c.write(s, "ratio", ratio);
+  c.write(s, "border", border);
+  c.write(s, "inlier_distance", inlier_distance);
+  c.write(s, "inlier_range_factor", inlier_range_factor);
+  c.write(s, "iterations", iterations);
+  c.write(s, "min_inliers", min_inliers);
+  c.write(s, "min_inlier_ratio", min_inlier_ratio);
+  c.write(s, "seed", seed);
+}
+
+void EgoMotionParams::validate() const {
+  requireInRange("features", features, 10, 100000);
+  requireInRange("scale_factor", scale_factor, 1.01, 4);
+  requireInRange("levels", levels, 1, 8);
+  requireInRange("fast_threshold", fast_threshold, 1, 255);
+  requireInRange("upsample", upsample, 1, 4);
+  requireInRange("ratio", ratio, 0.1, 1.0);
+  requireInRange("border", border, 0, 20);
+  requirePositive("inlier_distance", inlier_distance);
+  requireInRange("inlier_range_factor", inlier_range_factor, 0, 1);
+  requireInRange("iterations", iterations, 1, 100000);
+  requireInRange("min_inliers", min_inliers, 3, 100000);
+  requireInRange("min_inlier_ratio", min_inlier_ratio, 0, 1);
+}
+
+EgoMotionEstimator::EgoMotionEstimator(const EgoMotionParams& p)
+    : p_(p), matcher_(cv::NORM_HAMMING), rng_(static_cast<unsigned>(p.seed)) {
+  p_.validate();
+  orb_ = cv::ORB::create(p_.features, static_cast<float>(p_.scale_factor), p_.levels, 31, 0, 2,
+                         cv::ORB::HARRIS_SCORE, 31, p_.fast_threshold);
+}
+
+void EgoMotionEstimator::reset() {
+  have_prev_ = false;
+  prev_ = Features{};
+  rng_.seed(static_cast<unsigned>(p_.seed));
+}
+
+void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& intensity,
+                                const cv::Mat_<std::uint8_t>& exclude, Features& out) {
+  const int H = f.rows(), W = f.cols(), up = p_.upsample;
+  intensity.convertTo(img8_, CV_8U);
+  // Keypoints only on returns at least `border` px away from any no-return, and off `exclude`.
+  if (p_.border > 0)
+    cv::erode(f.valid, mask_, cv::getStructuringElement(cv::MORPH_RECT, {2 * p_.border + 1, 2 * p_.border + 1}));
+  else
+    f.valid.copyTo(mask_);
+  if (!exclude.empty()) mask_.setTo(0, exclude);
+  if (up > 1) {
+    cv::resize(img8_, up_, cv::Size(W, H * up), 0, 0, cv::INTER_LINEAR);
+    cv::resize(mask_, mask_up_, cv::Size(W, H * up), 0, 0, cv::INTER_NEAREST);
+  } else {
+    up_ = img8_;
+    mask_up_ = mask_;
+  }
+  // Room for ORB's 31 px border and patch: wrap left/right (360 deg scan), reflect top/bottom.
+  cv::Mat tmp;
+  cv::copyMakeBorder(up_, tmp, kPad, kPad, 0, 0, cv::BORDER_REFLECT_101);
+  cv::copyMakeBorder(tmp, padded_, 0, 0, kPad, kPad, cv::BORDER_WRAP);
+  cv::copyMakeBorder(mask_up_, mask_pad_, kPad, kPad, kPad, kPad, cv::BORDER_CONSTANT, 0);
+  std::vector<cv::KeyPoint> kps;
+  cv::Mat desc;
+  orb_->detectAndCompute(padded_, mask_pad_, kps, desc);
+  out.points.clear();
+  out.pixels.clear();
+  out.descriptors.release();
+  std::vector<int> keep;
+  for (std::size_t i = 0; i < kps.size(); i++) {
+    const int c = static_cast<int>(std::lround(kps[i].pt.x - kPad));
+    const int r = static_cast<int>(std::floor((kps[i].pt.y - kPad) / up));
+    if (r < 0 || r >= H || c < 0 || c >= W || !f.isValid(r, c)) continue;
+    const cv::Vec3f& p = f.xyz(r, c);
+    out.points.emplace_back(p[0], p[1], p[2]);
+    out.pixels.push_back(r * W + c);
+    keep.push_back(static_cast<int>(i));
+  }
+  out.descriptors.create(static_cast<int>(keep.size()), desc.cols, desc.type());
+  for (std::size_t k = 0; k < keep.size(); k++) desc.row(keep[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
+}
+
+EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<float>& intensity,
+                                       const cv::Mat_<std::uint8_t>& exclude) {
+  EgoMotion em;
+  detect(frame, intensity, exclude, cur_);
+  if (!have_prev_ || prev_.descriptors.empty() || cur_.descriptors.empty()) {
+    std::swap(prev_, cur_);
+    have_prev_ = true;
+    return em;
+  }
+  std::vector<std::vector<cv::DMatch>> knn;
+  matcher_.knnMatch(cur_.descriptors, prev_.descriptors, knn, 2);
+  std::vector<Eigen::Vector3d> src, dst;  // current -> previous
+  for (const auto& m : knn) {
+    if (m.size() < 2 || m[0].distance > p_.ratio * m[1].distance) continue;
+    const cv::Point3f& a = cur_.points[static_cast<std::size_t>(m[0].queryIdx)];
+    const cv::Point3f& b = prev_.points[static_cast<std::size_t>(m[0].trainIdx)];
+    src.emplace_back(a.x, a.y, a.z);
+    dst.emplace_back(b.x, b.y, b.z);
+  }
+  em.matches = static_cast<int>(src.size());
+  std::swap(prev_, cur_);
+  if (em.matches < std::max(3, p_.min_inliers)) return em;
+
+  // RANSAC over minimal 3-point samples, then a least-squares refit on all inliers (Eq. 5).
+  const int n = em.matches;
+  std::uniform_int_distribution<int> pick(0, n - 1);
+  std::vector<char> best_in, in(static_cast<std::size_t>(n));
+  int best = 0;
+  auto countInliers = [&](const Eigen::Isometry3d& T, std::vector<char>& flags) {
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+      const auto& s = src[static_cast<std::size_t>(i)];
+      const double thr = p_.inlier_distance + p_.inlier_range_factor * s.norm();
+      flags[static_cast<std::size_t>(i)] = (T * s - dst[static_cast<std::size_t>(i)]).norm() < thr;
+      k += flags[static_cast<std::size_t>(i)];
+    }
+    return k;
+  };
+  std::vector<Eigen::Vector3d> s3(3), d3(3);
+  for (int it = 0; it < p_.iterations; it++) {
+    const int i0 = pick(rng_), i1 = pick(rng_), i2 = pick(rng_);
+    if (i0 == i1 || i1 == i2 || i0 == i2) continue;
+    s3 = {src[static_cast<std::size_t>(i0)], src[static_cast<std::size_t>(i1)], src[static_cast<std::size_t>(i2)]};
+    d3 = {dst[static_cast<std::size_t>(i0)], dst[static_cast<std::size_t>(i1)], dst[static_cast<std::size_t>(i2)]};
+    if ((s3[1] - s3[0]).cross(s3[2] - s3[0]).norm() < 1e-3) continue;  // degenerate sample
+    const int k = countInliers(rigidFit(s3, d3), in);
+    if (k > best) {
+      best = k;
+      best_in = in;
+    }
+  }
+  if (best < 3) return em;
+  std::vector<Eigen::Vector3d> si, di;
+  for (int i = 0; i < n; i++)
+    if (best_in[static_cast<std::size_t>(i)]) {
+      si.push_back(src[static_cast<std::size_t>(i)]);
+      di.push_back(dst[static_cast<std::size_t>(i)]);
+    }
+  em.motion = rigidFit(si, di);
+  em.inliers = countInliers(em.motion, in);
+  em.ok = em.inliers >= p_.min_inliers && em.inliers >= p_.min_inlier_ratio * n;
+  em.source = "intensity";
+  return em;
+}
+
+void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
+  if (!have_prev_ || dynamic.empty() || prev_.pixels.empty()) return;
+  const std::uint8_t* d = dynamic.ptr<std::uint8_t>(0);
+  Features kept;
+  std::vector<int> rows;
+  for (std::size_t i = 0; i < prev_.pixels.size(); i++) {
+    if (d[prev_.pixels[i]]) continue;
+    kept.points.push_back(prev_.points[i]);
+    kept.pixels.push_back(prev_.pixels[i]);
+    rows.push_back(static_cast<int>(i));
+  }
+  if (rows.size() == prev_.pixels.size()) return;
+  kept.descriptors.create(static_cast<int>(rows.size()), prev_.descriptors.cols, prev_.descriptors.type());
+  for (std::size_t k = 0; k < rows.size(); k++)
+    prev_.descriptors.row(rows[k]).copyTo(kept.descriptors.row(static_cast<int>(k)));
+  prev_ = std::move(kept);
+}
+
+}  // namespace dynobj::core

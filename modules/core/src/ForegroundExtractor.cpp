@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/ForegroundExtractor.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+namespace {
+
+/// Gaussian blur of the (2a+1) x (2b+1) kernel of Eq. (2)-(3), wrapping around horizontally
+/// (the image is a 360 degree scan) and reflecting at the top and bottom.
+void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat_<float>& tmp,
+                 cv::Mat_<float>& dst) {
+  const int a = p.kernel_half_width, b = p.kernel_half_height;
+  cv::Mat vert;
+  cv::copyMakeBorder(src, vert, b, b, 0, 0, cv::BORDER_REFLECT_101);
+  cv::copyMakeBorder(vert, tmp, 0, 0, a, a, cv::BORDER_WRAP);
+  cv::Mat blurred;
+  cv::GaussianBlur(tmp, blurred, cv::Size(2 * a + 1, 2 * b + 1), p.sigma_horizontal,
+                   p.sigma_vertical, cv::BORDER_REFLECT_101);
+  blurred(cv::Rect(a, b, src.cols, src.rows)).copyTo(dst);
+}
+
+}  // namespace
+
+void ForegroundParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                          const std::string& s) {
+  kernel_half_width = readInt(c, s, "kernel_half_width", kernel_half_width);
+  kernel_half_height = readInt(c, s, "kernel_half_height", kernel_half_height);
+  sigma_horizontal = readDouble(c, s, "sigma_horizontal", sigma_horizontal);
+  sigma_vertical = readDouble(c, s, "sigma_vertical", sigma_vertical);
+  threshold = readDouble(c, s, "threshold", threshold);
+  absolute = readBool(c, s, "absolute", absolute);
+  stretch_low = readDouble(c, s, "stretch_low", stretch_low);
+  stretch_high = readDouble(c, s, "stretch_high", stretch_high);
+  validate();
+}
+
+void ForegroundParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
+                                        const std::string& s) const {
+  c.write(s, "kernel_half_width", kernel_half_width);
+  c.write(s, "kernel_half_height", kernel_half_height);
+  c.write(s, "sigma_horizontal", sigma_horizontal);
+  c.write(s, "sigma_vertical", sigma_vertical);
+  c.write(s, "threshold", threshold);
+  c.write(s, "absolute", absolute);
+  c.write(s, "stretch_low", stretch_low);
+  c.write(s, "stretch_high", stretch_high);
+}
+
+void ForegroundParams::validate() const {
+  requireInRange("kernel_half_width", kernel_half_width, 1, 200);
+  requireInRange("kernel_half_height", kernel_half_height, 0, 50);
+  requirePositive("sigma_horizontal", sigma_horizontal);
+  requirePositive("sigma_vertical", sigma_vertical);
+  requireInRange("threshold", threshold, 0, 255);
+  requireInRange("stretch_low", stretch_low, 0, 100);
+  requireInRange("stretch_high", stretch_high, 0, 100);
+  if (stretch_high <= stretch_low) throwParameterError("stretch_high", "must exceed stretch_low");
+}
+
+ForegroundExtractor::ForegroundExtractor(const ForegroundParams& p) : p_(p) { p_.validate(); }
+
+const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
+  const cv::Mat_<float>& src = frame.has_intensity ? frame.intensity : frame.range;
+  // Percentiles from a subsample of the valid pixels (every 3rd): cheap and stable.
+  sample_.clear();
+  const int n = frame.rows() * frame.cols();
+  const float* s = src.ptr<float>(0);
+  const std::uint8_t* v = frame.valid.ptr<std::uint8_t>(0);
+  for (int i = 0; i < n; i += 3)
+    if (v[i]) sample_.push_back(s[i]);
+  f_.create(src.size());
+  if (sample_.empty()) {
+    f_.setTo(0);
+    return f_;
+  }
+  auto pct = [&](double q) {
+    const auto k = static_cast<std::size_t>(q / 100.0 * static_cast<double>(sample_.size() - 1));
+    std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(k), sample_.end());
+    return static_cast<double>(sample_[k]);
+  };
+  const double lo = pct(p_.stretch_low);
+  const double hi = std::max(pct(p_.stretch_high), lo + 1e-6);
+  const double scale = 255.0 / (hi - lo);
+  float* out = f_.ptr<float>(0);
+  for (int i = 0; i < n; i++)
+    out[i] = v[i] ? static_cast<float>(std::clamp((s[i] - lo) * scale, 0.0, 255.0)) : 0.0f;
+  return f_;
+}
+
+void ForegroundExtractor::extract(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& exclude,
+                                  cv::Mat_<std::uint8_t>& features) {
+  normalize(frame);
+  frame.valid.convertTo(v_, CV_32F, 1.0 / 255.0);
+  // Normalised convolution: h = (f * g) / (valid * g), so no-returns do not act as dark pixels.
+  blurWrapped(f_, p_, padded_, blurred_);
+  blurWrapped(v_, p_, padded_, weight_);
+  features.create(frame.range.size());
+  const int n = frame.rows() * frame.cols();
+  const float* f = f_.ptr<float>(0);
+  const float* h = blurred_.ptr<float>(0);
+  const float* w = weight_.ptr<float>(0);
+  const std::uint8_t* valid = frame.valid.ptr<std::uint8_t>(0);
+  const std::uint8_t* ex = exclude.empty() ? nullptr : exclude.ptr<std::uint8_t>(0);
+  std::uint8_t* t = features.ptr<std::uint8_t>(0);
+  const auto theta = static_cast<float>(p_.threshold);
+  for (int i = 0; i < n; i++) {
+    if (!valid[i] || (ex && ex[i]) || w[i] < 1e-3f) {
+      t[i] = 0;
+      continue;
+    }
+    const float d = f[i] - h[i] / w[i];  // Eq. (4): f - h
+    t[i] = (p_.absolute ? std::abs(d) : d) > theta ? 255 : 0;
+  }
+}
+
+}  // namespace dynobj::core

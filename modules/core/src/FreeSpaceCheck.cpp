@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/FreeSpaceCheck.h"
+
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+
+void FreeSpaceParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                         const std::string& s) {
+  enabled = readBool(c, s, "enabled", enabled);
+  margin = readDouble(c, s, "margin", margin);
+  range_factor = readDouble(c, s, "range_factor", range_factor);
+  min_free_ratio = readDouble(c, s, "min_free_ratio", min_free_ratio);
+  min_evidence = readInt(c, s, "min_evidence", min_evidence);
+  lookback = readInt(c, s, "lookback", lookback);
+  validate();
+}
+
+void FreeSpaceParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
+  c.write(s, "enabled", enabled);
+  c.write(s, "margin", margin);
+  c.write(s, "range_factor", range_factor);
+  c.write(s, "min_free_ratio", min_free_ratio);
+  c.write(s, "min_evidence", min_evidence);
+  c.write(s, "lookback", lookback);
+}
+
+void FreeSpaceParams::validate() const {
+  requirePositive("margin", margin);
+  requireInRange("range_factor", range_factor, 0, 1);
+  requireInRange("min_free_ratio", min_free_ratio, 0, 1);
+  requireInRange("min_evidence", min_evidence, 0, 1000000);
+  requireInRange("lookback", lookback, 1, 1000);
+}
+
+bool FreeSpaceEvidence::supportsMotion(const FreeSpaceParams& p) const {
+  const int decisive = free + occupied;
+  if (decisive < p.min_evidence) return true;  // no verdict: keep the candidate
+  return free >= p.min_free_ratio * decisive;
+}
+
+FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
+    : p_(p), history_(std::max<std::size_t>(history, 2)) {
+  p_.validate();
+}
+
+void FreeSpaceCheck::remember(long index, const LidarFrame& frame) {
+  if (!p_.enabled) return;
+  if (ranges_.size() >= history_) {  // recycle the oldest buffer
+    auto oldest = std::move(ranges_.front());
+    ranges_.pop_front();
+    frame.range.copyTo(oldest.second);
+    oldest.first = index;
+    ranges_.push_back(std::move(oldest));
+    return;
+  }
+  ranges_.emplace_back(index, frame.range.clone());
+}
+
+FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,
+                                           const Cluster& cluster, long past,
+                                           const FrameChain& chain) const {
+  FreeSpaceEvidence e;
+  const cv::Mat_<float>* old = nullptr;
+  for (const auto& [idx, r] : ranges_)
+    if (idx == past) old = &r;
+  if (!p_.enabled || !old || !chain.contains(past) || !chain.contains(current) ||
+      old->size() != frame.range.size())
+    return e;
+  const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
+  const SphericalProjection proj(frame.sensor);
+  const int W = frame.cols();
+  for (int px : cluster.pixels) {
+    const cv::Vec3f& p = frame.xyz(px / W, px % W);
+    const Eigen::Vector3d q = T * Eigen::Vector3d(p[0], p[1], p[2]);
+    int r = -1, c = -1;
+    if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) {
+      e.unknown++;
+      continue;
+    }
+    const double seen = (*old)(r, c), expected = q.norm();
+    const double tol = p_.margin + p_.range_factor * expected;
+    if (seen <= 0) e.unknown++;                        // no return then
+    else if (seen > expected + tol) e.free++;          // the ray went through: free space
+    else if (seen >= expected - tol) e.occupied++;     // a surface was already there
+    else e.unknown++;                                  // something nearer hid it
+  }
+  return e;
+}
+
+}  // namespace dynobj::core

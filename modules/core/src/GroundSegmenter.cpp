@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/GroundSegmenter.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+
+void GroundParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                      const std::string& s) {
+  max_slope = readDegrees(c, s, "max_slope", max_slope);
+  height_tolerance = readDouble(c, s, "height_tolerance", height_tolerance);
+  max_step = readDouble(c, s, "max_step", max_step);
+  validate();
+}
+
+void GroundParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
+  c.write(s, "max_slope", max_slope * 180 / M_PI);
+  c.write(s, "height_tolerance", height_tolerance);
+  c.write(s, "max_step", max_step);
+}
+
+void GroundParams::validate() const {
+  requireInRange("max_slope", max_slope, 0, M_PI / 2);
+  requirePositive("height_tolerance", height_tolerance);
+  requireInRange("max_step", max_step, 0, 1);
+}
+
+GroundSegmenter::GroundSegmenter(const GroundParams& p) : p_(p) { p_.validate(); }
+
+double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& ground) {
+  ground.create(f.range.size());
+  ground.setTo(0);
+  const int H = f.rows(), W = f.cols();
+  // Ground height: a low percentile of the z of the lowest returns of each column (below the
+  // horizon), robust to objects standing close to the sensor.
+  zs_.clear();
+  for (int c = 0; c < W; c++)
+    for (int r = H - 1; r >= 0; r--)
+      if (f.isValid(r, c)) {
+        if (f.xyz(r, c)[2] < 0) zs_.push_back(f.xyz(r, c)[2]);
+        break;
+      }
+  if (zs_.empty()) return 0.0;
+  const auto k = zs_.size() / 5;
+  std::nth_element(zs_.begin(), zs_.begin() + static_cast<std::ptrdiff_t>(k), zs_.end());
+  const double z_ground = zs_[k];
+  const double tan_slope = std::tan(p_.max_slope);
+
+  for (int c = 0; c < W; c++) {
+    // Bottom-up: the first return near the ground height starts the column's ground chain; each
+    // next return is ground when it continues the chain (small step, or a gentle slope away from
+    // the sensor). Objects break the chain only locally: the floor seen behind a person is ground.
+    bool have_last = false;
+    double lxy = 0, lz = 0;
+    for (int r = H - 1; r >= 0; r--) {
+      if (!f.isValid(r, c)) continue;
+      const cv::Vec3f& p = f.xyz(r, c);
+      const double xy = std::hypot(p[0], p[1]);
+      bool is_ground = false;
+      if (!have_last) {
+        is_ground = std::abs(p[2] - z_ground) <= p_.height_tolerance;
+      } else {
+        const double dxy = xy - lxy, dz = std::abs(p[2] - lz);
+        is_ground = (dz <= p_.max_step && dxy > -p_.max_step) || (dxy > 0 && dz <= tan_slope * dxy);
+      }
+      if (!is_ground) continue;
+      // The base of a vertical structure (a foot, a wheel, the bottom of a wall) is at ground
+      // height too, but the next return above it stands at the same distance: not ground.
+      int ra = r - 1;
+      while (ra >= 0 && !f.isValid(ra, c)) ra--;
+      if (ra >= 0) {
+        const cv::Vec3f& q = f.xyz(ra, c);
+        if (std::abs(std::hypot(q[0], q[1]) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step)
+          continue;
+      }
+      ground(r, c) = 255;
+      lxy = xy;
+      lz = p[2];
+      have_last = true;
+    }
+  }
+  return z_ground;
+}
+
+}  // namespace dynobj::core

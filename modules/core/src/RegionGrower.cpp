@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/RegionGrower.h"
+
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+
+void RegionGrowingParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                             const std::string& s) {
+  distance = readDouble(c, s, "distance", distance);
+  range_factor = readDouble(c, s, "range_factor", range_factor);
+  depth_factor = readDouble(c, s, "depth_factor", depth_factor);
+  max_extent = readDouble(c, s, "max_extent", max_extent);
+  max_pixels = readInt(c, s, "max_pixels", max_pixels);
+  validate();
+}
+
+void RegionGrowingParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
+                                           const std::string& s) const {
+  c.write(s, "distance", distance);
+  c.write(s, "range_factor", range_factor);
+  c.write(s, "depth_factor", depth_factor);
+  c.write(s, "max_extent", max_extent);
+  c.write(s, "max_pixels", max_pixels);
+}
+
+void RegionGrowingParams::validate() const {
+  requirePositive("distance", distance);
+  requireInRange("range_factor", range_factor, 0, 100);
+  requireInRange("depth_factor", depth_factor, 0, 1);
+  requirePositive("max_extent", max_extent);
+  requireInRange("max_pixels", max_pixels, 1, 10000000);
+}
+
+RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) { p_.validate(); }
+
+std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
+                                    const std::vector<std::vector<int>>& seeds,
+                                    cv::Mat_<std::uint8_t>& mask, cv::Mat_<int>& owner) {
+  const int H = f.rows(), W = f.cols();
+  if (mask.size() != f.range.size()) mask = cv::Mat_<std::uint8_t>(H, W, std::uint8_t{0});
+  if (owner.size() != f.range.size()) owner = cv::Mat_<int>(H, W, -1);
+  // Angular gaps between neighbouring pixels: how far apart two points of one surface can be,
+  // vertically (between beams) and horizontally (between columns).
+  const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
+  std::vector<int> counts(seeds.size(), 0);
+  for (std::size_t obj = 0; obj < seeds.size(); obj++) {
+    if (seeds[obj].empty()) continue;
+    double cx = 0, cy = 0;
+    for (int px : seeds[obj]) {
+      cx += f.xyz(px / W, px % W)[0];
+      cy += f.xyz(px / W, px % W)[1];
+    }
+    cx /= static_cast<double>(seeds[obj].size());
+    cy /= static_cast<double>(seeds[obj].size());
+    queue_.clear();
+    for (int px : seeds[obj]) {
+      const int r = px / W, c = px % W;
+      if (!f.isValid(r, c) || owner(r, c) >= 0) continue;
+      owner(r, c) = static_cast<int>(obj);
+      mask(r, c) = 255;
+      queue_.push_back(px);
+    }
+    for (std::size_t head = 0; head < queue_.size() && static_cast<int>(queue_.size()) < p_.max_pixels; head++) {
+      const int r = queue_[head] / W, c = queue_[head] % W;
+      const cv::Vec3f& p = f.xyz(r, c);
+      const double rng = f.range(r, c);
+      for (int dr = -1; dr <= 1; dr++) {
+        const int rr = r + dr;
+        if (rr < 0 || rr >= H) continue;
+        for (int dc = -1; dc <= 1; dc++) {  // N8 of Eq. (24)
+          if (dr == 0 && dc == 0) continue;
+          const int cc = (c + dc + W) % W;
+          if (!f.isValid(rr, cc) || owner(rr, cc) >= 0 || ground(rr, cc)) continue;
+          const cv::Vec3f& q = f.xyz(rr, cc);
+          // Eq. (25), with epsilon widened by the gap between the two pixels' rays at this range.
+          const double gap = dr == 0 ? gap_h : (dc == 0 ? gap_v : std::hypot(gap_h, gap_v));
+          if (cv::norm(q - p) > p_.distance + p_.range_factor * rng * gap) continue;
+          if (std::abs(f.range(rr, cc) - rng) > p_.distance + p_.depth_factor * rng) continue;
+          if (std::hypot(q[0] - cx, q[1] - cy) > p_.max_extent) continue;
+          owner(rr, cc) = static_cast<int>(obj);
+          mask(rr, cc) = 255;
+          queue_.push_back(rr * W + cc);
+        }
+      }
+    }
+    counts[obj] = static_cast<int>(queue_.size());
+  }
+  return counts;
+}
+
+}  // namespace dynobj::core
