@@ -84,12 +84,14 @@ const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
     std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(k), sample_.end());
     return static_cast<double>(sample_[k]);
   };
-  const double lo = pct(p_.stretch_low);
-  const double hi = std::max(pct(p_.stretch_high), lo + 1e-6);
-  const double scale = 255.0 / (hi - lo);
+  // Linear stretch: the low percentile maps to 32 and the high one to 223, leaving head room so
+  // that objects brighter or darker than almost everything (a few pixels) still stand out. A
+  // flat image (hi = lo) keeps a 1 % of hi step, so it does not degenerate.
+  const double lo = pct(p_.stretch_low), hi = pct(p_.stretch_high);
+  const double scale = 191.0 / std::max(hi - lo, 0.01 * std::abs(hi) + 1e-3);
   float* out = f_.ptr<float>(0);
   for (int i = 0; i < n; i++)
-    out[i] = v[i] ? static_cast<float>(std::clamp((s[i] - lo) * scale, 0.0, 255.0)) : 0.0f;
+    out[i] = v[i] ? static_cast<float>(std::clamp(32.0 + (s[i] - lo) * scale, 0.0, 255.0)) : 0.0f;
   return f_;
 }
 

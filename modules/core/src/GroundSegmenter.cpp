@@ -73,7 +73,8 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
       while (ra >= 0 && !f.isValid(ra, c)) ra--;
       if (ra >= 0) {
         const cv::Vec3f& q = f.xyz(ra, c);
-        if (std::abs(std::hypot(q[0], q[1]) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step)
+        if (std::abs(std::hypot(q[0], q[1]) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step &&
+            p[2] - z_ground > p_.max_step / 2)
           continue;
       }
       ground(r, c) = 255;

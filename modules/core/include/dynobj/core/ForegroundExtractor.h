@@ -20,8 +20,8 @@ struct ForegroundParams : public StageParams {
   double sigma_vertical = 1.0;      ///< sigma_n [px]
   double threshold = 14.0;          ///< theta [stretched intensity units, 0..255]
   bool absolute = true;             ///< |f - h| > theta (darker objects too); false = paper's f - h > theta
-  double stretch_low = 1.0;         ///< percentile mapped to 0
-  double stretch_high = 99.0;       ///< percentile mapped to 255
+  double stretch_low = 1.0;         ///< percentile mapped to 32 (of 0..255)
+  double stretch_high = 99.0;       ///< percentile mapped to 223
 
   void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
   void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
@@ -32,7 +32,8 @@ class ForegroundExtractor {
  public:
   explicit ForegroundExtractor(const ForegroundParams& p = {});
 
-  /// Normalised intensity f (CV_32F, 0..255; 0 where no return), reused by the ego-motion stage.
+  /// Normalised intensity f (CV_32F, 0..255: percentiles stretch_low/high -> 32/223, clamped;
+  /// 0 where no return), reused by the ego-motion stage.
   const cv::Mat_<float>& normalize(const LidarFrame& frame);
   /// Eq. (4): `features` = 255 where t(u, v) = 1 among valid pixels not in `exclude` (may be
   /// empty). Calls normalize() first. The blur is normalised by the valid mask, so no-return

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/EgoMotionEstimator.h>
+#include <dynobj/core/ForegroundExtractor.h>
+#include <dynobj/core/FreeSpaceCheck.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "SyntheticScene.h"
+
+using namespace dynobj::core;
+using dynobj::test::Scene;
+
+TEST(EgoMotionEstimator, RecoversAKnownRigidMotion) {
+  const auto s = dynobj::test::smallSensor(64, 1024);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 3; trial++) {
+    Scene a;
+    a.posts = {{3, 2, 0.4, 2.0}, {-4, 1, 0.3, 2.5}, {1, -5, 0.5, 1.5}};
+    Scene b = a;  // the sensor moved: T_{a<-b}
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(0.3 * u(rng), 0.3 * u(rng), 0.03 * u(rng));
+    T.linear() = Eigen::AngleAxisd(0.06 * u(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                 Eigen::AngleAxisd(0.02 * u(rng), Eigen::Vector3d::UnitX()).toRotationMatrix();
+    b.sensor = T;
+    const LidarFrame fa = dynobj::test::render(a, s, false, 1);
+    const LidarFrame fb = dynobj::test::render(b, s, false, 2);
+    ForegroundExtractor fx;
+    EgoMotionEstimator ego;
+    EXPECT_FALSE(ego.estimate(fa, fx.normalize(fa), {}).ok);  // no previous frame yet
+    const EgoMotion em = ego.estimate(fb, fx.normalize(fb), {});
+    ASSERT_TRUE(em.ok) << "trial " << trial << ": " << em.inliers << "/" << em.matches;
+    EXPECT_EQ(em.source, "intensity");
+    const Eigen::Isometry3d err = T.inverse() * em.motion;
+    EXPECT_LT(err.translation().norm(), 0.03) << "trial " << trial;
+    EXPECT_LT(Eigen::AngleAxisd(err.linear()).angle(), 0.005) << "trial " << trial;
+  }
+}
+
+TEST(EgoMotionEstimator, FeaturelessScenesFailCleanly) {
+  const auto s = dynobj::test::smallSensor(64, 1024);
+  const LidarFrame f = dynobj::test::render(Scene{}, s, true);  // flat intensities: no corners
+  ForegroundExtractor fx;
+  EgoMotionEstimator ego;
+  ego.estimate(f, fx.normalize(f), {});
+  const EgoMotion em = ego.estimate(f, fx.normalize(f), {});
+  EXPECT_FALSE(em.ok);
+  EXPECT_LT(em.inliers, EgoMotionParams().min_inliers);
+}
+
+TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
+  const auto s = dynobj::test::smallSensor(32, 512);
+  Scene before, after;
+  before.posts = {{5, 0, 0.3, 1.8}};   // a post that stays
+  after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};  // and one that arrived at (4, 3)
+  const LidarFrame f0 = dynobj::test::render(before, s, true, 1);
+  const LidarFrame f1 = dynobj::test::render(after, s, true, 2);
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  chain.push(1, Eigen::Isometry3d::Identity(), true);
+  FreeSpaceCheck check;
+  check.remember(0, f0);
+  auto clusterAt = [&](double x, double y) {
+    Cluster c;
+    for (int r = 0; r < f1.rows(); r++)
+      for (int col = 0; col < f1.cols(); col++) {
+        const cv::Vec3f& p = f1.xyz(r, col);
+        if (f1.isValid(r, col) && std::hypot(p[0] - x, p[1] - y) < 0.35 && p[2] > -0.7f)
+          c.pixels.push_back(r * f1.cols() + col);
+      }
+    return c;
+  };
+  const auto arrived = check.evidence(f1, 1, clusterAt(4, 3), 0, chain);
+  const auto stayed = check.evidence(f1, 1, clusterAt(5, 0), 0, chain);
+  EXPECT_GT(arrived.free, 5);
+  EXPECT_EQ(arrived.occupied, 0);
+  EXPECT_TRUE(arrived.supportsMotion(check.params()));
+  EXPECT_GT(stayed.occupied, 5);
+  EXPECT_EQ(stayed.free, 0);
+  EXPECT_FALSE(stayed.supportsMotion(check.params()));
+  // Unknown past frame: no verdict, the candidate is kept.
+  EXPECT_TRUE(check.evidence(f1, 1, clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
+}

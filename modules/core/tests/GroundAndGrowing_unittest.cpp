@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/GroundSegmenter.h>
+#include <dynobj/core/RegionGrower.h>
+#include <gtest/gtest.h>
+
+#include "SyntheticScene.h"
+
+using namespace dynobj::core;
+using dynobj::test::Post;
+using dynobj::test::Scene;
+
+TEST(GroundSegmenter, FloorIsGroundObjectsAndWallsAreNot) {
+  Scene scene;
+  scene.posts.push_back({4, 0, 0.3, 1.8});
+  const auto s = dynobj::test::smallSensor();
+  const LidarFrame f = dynobj::test::render(scene, s);
+  cv::Mat_<std::uint8_t> ground;
+  const double z = GroundSegmenter().segment(f, ground);
+  EXPECT_NEAR(z, -1.0, 1e-4);
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      if (!f.isValid(r, c)) continue;
+      // Floor, or the last few cm of an object's base (within max_step / 2 of the ground height:
+      // a height no segmenter can tell from the floor).
+      const bool floor = f.xyz(r, c)[2] < -1.0f + 0.04f;
+      EXPECT_EQ(ground(r, c) != 0, floor) << r << "," << c << " z=" << f.xyz(r, c)[2];
+    }
+}
+
+TEST(RegionGrower, FillsTheObjectAndStopsAtGroundAndDepthJumps) {
+  Scene scene;
+  scene.posts.push_back({4, 0, 0.3, 1.8});    // the object
+  scene.posts.push_back({4, 1.2, 0.3, 1.8});  // a neighbour 1.2 m away: a depth/space jump
+  const auto s = dynobj::test::smallSensor();
+  const LidarFrame f = dynobj::test::render(scene, s);
+  cv::Mat_<std::uint8_t> ground;
+  GroundSegmenter().segment(f, ground);
+  // Ground truth: pixels whose point lies on the first post.
+  auto onPost = [&](int r, int c, double px, double py) {
+    const cv::Vec3f& p = f.xyz(r, c);
+    return std::abs(std::hypot(p[0] - px, p[1] - py) - 0.3) < 1e-3 && p[2] > -1.0f + 0.04f;
+  };
+  int seed = -1, truth = 0;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++)
+      if (f.isValid(r, c) && onPost(r, c, 4, 0)) {
+        truth++;
+        if (seed < 0) seed = r * f.cols() + c;
+      }
+  ASSERT_GT(truth, 4);
+  cv::Mat_<std::uint8_t> mask;
+  cv::Mat_<int> owner;
+  const auto counts = RegionGrower().grow(f, ground, {{seed}}, mask, owner);
+  EXPECT_EQ(counts[0], truth);
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++)
+      EXPECT_EQ(mask(r, c) != 0, f.isValid(r, c) && onPost(r, c, 4, 0)) << r << "," << c;
+}
+
+TEST(RegionGrower, WrapsAroundTheSeamAndRespectsMaxExtent) {
+  Scene scene;
+  scene.posts.push_back({-4, 0, 0.4, 1.5});  // straight behind: spans the column seam
+  const auto s = dynobj::test::smallSensor();
+  const LidarFrame f = dynobj::test::render(scene, s);
+  cv::Mat_<std::uint8_t> ground, mask;
+  cv::Mat_<int> owner;
+  GroundSegmenter().segment(f, ground);
+  const int r = 8;  // just below the horizon, hits the post
+  ASSERT_TRUE(f.isValid(r, 0));
+  ASSERT_LT(f.range(r, 0), 4.0f);
+  RegionGrower().grow(f, ground, {{r * f.cols() + 0}}, mask, owner);
+  EXPECT_TRUE(mask(r, f.cols() - 1));  // reached across the seam
+  RegionGrowingParams tight;
+  tight.max_extent = 0.05;
+  cv::Mat_<std::uint8_t> m2;
+  cv::Mat_<int> o2;
+  const auto n = RegionGrower(tight).grow(f, ground, {{r * f.cols() + 0}}, m2, o2);
+  EXPECT_LT(n[0], cv::countNonZero(mask));
+}

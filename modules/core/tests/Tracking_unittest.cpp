@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Association (Eq. 8-13), movement analysis and outlier rejection (Eq. 14-23), tracks.
+#include <dynobj/core/ClusterAssociator.h>
+#include <dynobj/core/Hungarian.h>
+#include <dynobj/core/MovementAnalyzer.h>
+#include <dynobj/core/TrackManager.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace dynobj::core;
+using V3 = Eigen::Vector3d;
+
+TEST(ClusterAssociator, CostMatrixHasDummies) {
+  AssociationParams p;
+  p.gate_distance = 1.0;
+  const ClusterAssociator a(p);
+  const auto D = a.costMatrix({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)});  // M = 2, N = 1
+  ASSERT_EQ(D.rows(), 3);
+  ASSERT_EQ(D.cols(), 3);
+  EXPECT_DOUBLE_EQ(D(0, 0), 0.5);          // within d_max
+  EXPECT_DOUBLE_EQ(D(1, 0), a.forbidden());  // beyond d_max (Eq. 9)
+  EXPECT_DOUBLE_EQ(D(0, 1), 2.0);          // cluster -> dummy: 2 d_max
+  EXPECT_DOUBLE_EQ(D(1, 2), 2.0);
+  EXPECT_DOUBLE_EQ(D(2, 0), 2.0);          // dummy -> track
+  EXPECT_DOUBLE_EQ(D(2, 1), 0.0);          // dummy -> dummy
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)}), (std::vector<int>{0, -1}));
+}
+
+TEST(ClusterAssociator, GlobalNotGreedy) {
+  // Greedy nearest-neighbour would give cluster 0 track 0 (0.1) and leave cluster 1 with nothing;
+  // the optimum pairs 0-1 and 1-0 (0.6 + 0.5 < 0.1 + 2 * 2 d_max).
+  const ClusterAssociator a;
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(0.6, 0, 0)}, {V3(0.1, 0, 0), V3(-0.6, 0, 0)}),
+            (std::vector<int>{1, 0}));
+}
+
+TEST(ClusterAssociator, ComponentsMatchTheWholeProblem) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-10, 10);
+  const ClusterAssociator a;
+  for (int trial = 0; trial < 30; trial++) {
+    std::vector<V3> cur, pred;
+    for (int i = 0; i < 25; i++) cur.emplace_back(u(rng), u(rng), 0);
+    for (int i = 0; i < 20; i++) pred.emplace_back(u(rng), u(rng), 0);
+    const auto out = a.associate(cur, pred);
+    // Same total cost as the single big Hungarian problem.
+    const Eigen::MatrixXd D = a.costMatrix(cur, pred);
+    double whole = 0;
+    {  // cost of the decomposed answer, completed with dummies
+      double c = 0;
+      int unmatched_tracks = static_cast<int>(pred.size());
+      for (std::size_t m = 0; m < cur.size(); m++) {
+        if (out[m] >= 0) {
+          c += (cur[m] - pred[static_cast<std::size_t>(out[m])]).norm();
+          unmatched_tracks--;
+        } else {
+          c += 2.0;
+        }
+      }
+      c += 2.0 * unmatched_tracks;
+      whole = c;
+    }
+    const std::vector<int> best = solveAssignment(D);
+    EXPECT_NEAR(whole, assignmentCost(D, best), 1e-9) << "trial " << trial;
+  }
+}
+
+namespace {
+
+/// A chain of `n` frames with the robot moving +0.1 m/frame along X (T_{prev<-cur} = +0.1 x).
+FrameChain walkingChain(int n) {
+  FrameChain chain(64);
+  for (long i = 0; i < n; i++) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    if (i > 0) T.translation() = V3(0.1, 0, 0);
+    chain.push(i, T, true);
+  }
+  return chain;
+}
+
+Cluster compact() {
+  Cluster c;
+  c.elongation = 1.0;
+  c.length = 0.4;
+  return c;
+}
+
+}  // namespace
+
+TEST(MovementAnalyzer, MovingClusterFlaggedAfterKFramesStaticWithJitterNot) {
+  MovementParams p;
+  p.window = 5;
+  p.min_displacement = 0.25;
+  const MovementAnalyzer m(p);
+  const FrameChain chain = walkingChain(10);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> jitter(0, 0.05);
+  std::deque<WindowEntry> moving, still;
+  for (long i = 0; i < 10; i++) {
+    // World: the object moves +0.1 m/frame along Y; the robot moves +0.1 m/frame along X, so in the
+    // sensor frame of frame i the world point (x, y) appears at (x - 0.1 i, y).
+    moving.emplace_back(i, V3(5 - 0.1 * i, 0.1 * i, 0));
+    still.emplace_back(i, V3(3 - 0.1 * i + jitter(rng), 2 + jitter(rng), 0));
+    if (moving.size() > 5) moving.pop_front(), still.pop_front();
+    const auto dm = m.analyse(moving, chain, compact(), 0.1);
+    const auto ds = m.analyse(still, chain, compact(), 0.1);
+    EXPECT_EQ(dm.enough_history, i >= 4);
+    EXPECT_EQ(dm.moving(), i >= 4) << "frame " << i;  // 0.4 m over the window
+    if (i >= 4) {
+      EXPECT_NEAR(dm.displacement, 0.4, 1e-9);
+    }
+    EXPECT_FALSE(ds.moving()) << "frame " << i << " f=" << ds.displacement << " fa=" << ds.path;
+  }
+}
+
+TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
+  const MovementAnalyzer m;  // window 5
+  const FrameChain chain = walkingChain(5);
+  std::deque<WindowEntry> w;
+  // A wall along X beside the robot: its visible part (and centroid) slides forward with it.
+  for (long i = 0; i < 5; i++) w.emplace_back(i, V3(2.0, 3.0, 0));  // same place in each sensor frame
+  Cluster wall;
+  wall.main_direction = Eigen::Vector2d(1, 0);
+  wall.elongation = 8;
+  wall.length = 6;
+  const auto d = m.analyse(w, chain, wall, 0.1);
+  EXPECT_TRUE(d.candidate);      // moves 0.4 m in the first frame's coordinates
+  EXPECT_NEAR(d.angle, 0.0, 1e-9);
+  EXPECT_TRUE(d.long_object);
+  EXPECT_FALSE(d.moving());
+  Cluster across = wall;         // the same motion across the object's axis is real motion
+  across.main_direction = Eigen::Vector2d(0, 1);
+  EXPECT_TRUE(m.analyse(w, chain, across, 0.1).moving());
+}
+
+TEST(MovementAnalyzer, UnreliableEgoMotionInTheWindowGivesNoVerdict) {
+  FrameChain chain(16);
+  for (long i = 0; i < 6; i++) chain.push(i, Eigen::Isometry3d::Identity(), i != 3);
+  std::deque<WindowEntry> w;
+  for (long i = 1; i < 6; i++) w.emplace_back(i, V3(0.2 * i, 0, 0));
+  const auto d = MovementAnalyzer().analyse(w, chain, compact(), 0.1);
+  EXPECT_FALSE(d.enough_history);
+  EXPECT_FALSE(d.moving());
+}
+
+TEST(TrackManager, KalmanKeepsAnOccludedTrackAndItsWindow) {
+  TrackingParams p;
+  p.max_missed = 3;
+  TrackManager tm(p, 5);
+  const Eigen::Isometry3d still = Eigen::Isometry3d::Identity();
+  auto cl = [](double y) {
+    Cluster c;
+    c.centroid = V3(5, y, 0);
+    return std::vector<Cluster>{c};
+  };
+  for (long i = 0; i < 5; i++) {  // walks +0.1 m/frame in Y
+    tm.predict(still, 0.1);
+    std::vector<int> match(1, tm.tracks().empty() ? -1 : 0);
+    tm.update(i, cl(0.1 * i), match);
+  }
+  const int id = tm.tracks()[0].id;
+  for (long i = 5; i < 8; i++) {  // hidden for 3 frames: coasts at ~1 m/s
+    tm.predict(still, 0.1);
+    tm.update(i, {}, {});
+  }
+  ASSERT_EQ(tm.tracks().size(), 1u);
+  EXPECT_NEAR(tm.tracks()[0].position().y(), 0.7, 0.1);
+  tm.predict(still, 0.1);
+  const ClusterAssociator a;
+  const auto match = a.associate({V3(5, 0.8, 0)}, tm.predicted());
+  EXPECT_EQ(match[0], 0);  // re-found where the filter predicted it
+  tm.update(8, cl(0.8), match);
+  EXPECT_EQ(tm.tracks()[0].id, id);
+  EXPECT_EQ(tm.tracks()[0].window.size(), 5u);
+  for (long i = 9; i < 13; i++) {  // gone for good: dropped after max_missed
+    tm.predict(still, 0.1);
+    tm.update(i, {}, {});
+  }
+  EXPECT_TRUE(tm.tracks().empty());
+}
+
+TEST(TrackManager, HysteresisStopsFlicker) {
+  TrackingParams p;
+  p.confirm_frames = 2;
+  p.release_frames = 3;
+  TrackManager tm(p, 5);
+  Track t;
+  MovementDecision yes, no;
+  yes.enough_history = yes.candidate = true;
+  no.enough_history = true;
+  const std::vector<std::pair<MovementDecision, bool>> seq = {
+      {yes, false}, {yes, true}, {no, true}, {yes, true}, {no, true}, {no, true}, {no, false}};
+  for (const auto& [d, expect] : seq) {
+    tm.decide(t, d);
+    EXPECT_EQ(t.dynamic, expect);
+  }
+  p.hysteresis = false;
+  TrackManager raw(p, 5);
+  Track u;
+  raw.decide(u, yes);
+  EXPECT_TRUE(u.dynamic);
+  raw.decide(u, no);
+  EXPECT_FALSE(u.dynamic);
+}
