@@ -22,16 +22,26 @@ double msSince(Clock::time_point& t) {
 }  // namespace
 
 void DetectorParams::load(const ::mrpt::config::CConfigFileBase& c, const std::string& prefix) {
-  foreground.loadFromConfigFile(c, prefix + "foreground");
-  exclude_ground_features = readBool(c, prefix + "foreground", "exclude_ground", exclude_ground_features);
-  ground.loadFromConfigFile(c, prefix + "ground");
-  ego_motion.loadFromConfigFile(c, prefix + "ego_motion");
-  clustering.loadFromConfigFile(c, prefix + "clustering");
-  association.loadFromConfigFile(c, prefix + "association");
-  movement.loadFromConfigFile(c, prefix + "movement");
-  free_space.loadFromConfigFile(c, prefix + "free_space");
-  tracking.loadFromConfigFile(c, prefix + "tracking");
-  region_growing.loadFromConfigFile(c, prefix + "region_growing");
+  DetectorParams p = *this;  // all or nothing: *this changes only if every section is valid
+  auto section = [&](::mrpt::config::CLoadableOptions& stage, const std::string& name) {
+    try {
+      stage.loadFromConfigFile(c, prefix + name);
+    } catch (const ParameterError& e) {
+      const std::string what = e.what();
+      throw ParameterError(what.rfind("[", 0) == 0 ? what : "[" + prefix + name + "] " + what);
+    }
+  };
+  section(p.foreground, "foreground");
+  p.exclude_ground_features = readBool(c, prefix + "foreground", "exclude_ground", p.exclude_ground_features);
+  section(p.ground, "ground");
+  section(p.ego_motion, "ego_motion");
+  section(p.clustering, "clustering");
+  section(p.association, "association");
+  section(p.movement, "movement");
+  section(p.free_space, "free_space");
+  section(p.tracking, "tracking");
+  section(p.region_growing, "region_growing");
+  *this = p;
 }
 
 void DetectorParams::save(::mrpt::config::CConfigFileBase& c, const std::string& prefix) const {

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/Config.h>
+#include <dynobj/core/DynamicObjectDetector.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+using namespace dynobj::core;
+
+namespace {
+std::string dump(const DetectorParams& p) {
+  ::mrpt::config::CConfigFileMemory m;
+  p.save(m);
+  return m.getContent();
+}
+}  // namespace
+
+TEST(DetectorParams, ShippedIniEqualsTheDefaults) {
+  ::mrpt::config::CConfigFile cfg(std::string(DYNOBJ_SHARE_DIR) + "/config/dynobj.ini");
+  DetectorParams loaded;
+  loaded.load(cfg);
+  EXPECT_EQ(dump(loaded), dump(DetectorParams{}));
+}
+
+TEST(DetectorParams, SaveLoadRoundTripWithPrefix) {
+  DetectorParams p;
+  p.movement.window = 9;
+  p.movement.long_object_angle = 0.3;
+  p.tracking.hysteresis = false;
+  p.free_space.enabled = false;
+  ::mrpt::config::CConfigFileMemory m;
+  p.save(m, "dynobj_");
+  DetectorParams q;
+  q.load(m, "dynobj_");
+  EXPECT_EQ(dump(q), dump(p));
+  EXPECT_EQ(q.movement.window, 9);
+  EXPECT_NEAR(q.movement.long_object_angle, 0.3, 1e-7);  // written in degrees, 9 digits
+}
+
+TEST(DetectorParams, BadValuesNameSectionAndKey) {
+  ::mrpt::config::CConfigFileMemory m("[movement]\nwindow = 1\n");
+  DetectorParams p;
+  try {
+    p.load(m);
+    FAIL();
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("[movement] window"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(p.movement.window, MovementParams{}.window);  // a failed load changes nothing
+  ::mrpt::config::CConfigFileMemory m2("[region_growing]\ndistance = -1\n");
+  try {
+    p.load(m2);
+    FAIL();
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("[region_growing] distance"), std::string::npos) << e.what();
+  }
+}
