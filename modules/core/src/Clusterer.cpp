@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <nanoflann.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynobj/core/Config.h"
@@ -33,6 +34,7 @@ void ClusteringParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase&
   vertical_distance = readDouble(c, s, "vertical_distance", vertical_distance);
   min_points = readInt(c, s, "min_points", min_points);
   max_points = readInt(c, s, "max_points", max_points);
+  max_length = readDouble(c, s, "max_length", max_length);
   kdtree = readBool(c, s, "kdtree", kdtree);
   max_window = readInt(c, s, "max_window", max_window);
   validate();
@@ -43,6 +45,7 @@ void ClusteringParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, cons
   c.write(s, "vertical_distance", vertical_distance);
   c.write(s, "min_points", min_points);
   c.write(s, "max_points", max_points);
+  c.write(s, "max_length", max_length);
   c.write(s, "kdtree", kdtree);
   c.write(s, "max_window", max_window);
 }
@@ -53,6 +56,7 @@ void ClusteringParams::validate() const {
   requireInRange("min_points", min_points, 1, 1000000);
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("max_window", max_window, 1, 1000);
+  requireInRange("max_length", max_length, 0, 1e6);
 }
 
 void computeClusterShape(const LidarFrame& f, Cluster& c) {
@@ -133,6 +137,9 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
     out[static_cast<std::size_t>(slot_[l])].pixels.push_back(pixels_[i]);
   }
   for (Cluster& c : out) computeClusterShape(f, c);
+  if (p_.max_length > 0)
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const Cluster& c) { return c.length > p_.max_length; }),
+              out.end());
 }
 
 void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {

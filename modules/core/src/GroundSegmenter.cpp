@@ -63,8 +63,11 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
       if (!have_last) {
         is_ground = std::abs(p[2] - z_ground) <= p_.height_tolerance;
       } else {
+        // The chain must move away from the sensor: a rise of at most max_slope over the
+        // horizontal progress, plus a quarter of max_step for range noise. (A vertical surface
+        // seen at close range, rows a few cm apart, must not climb as "small steps".)
         const double dxy = xy - lxy, dz = std::abs(p[2] - lz);
-        is_ground = (dz <= p_.max_step && dxy > -p_.max_step) || (dxy > 0 && dz <= tan_slope * dxy);
+        is_ground = dxy > -0.25 * p_.max_step && dz <= tan_slope * std::max(dxy, 0.0) + 0.25 * p_.max_step;
       }
       if (!is_ground) continue;
       // The base of a vertical structure (a foot, a wheel, the bottom of a wall) is at ground

@@ -55,6 +55,10 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
     }
     cx /= static_cast<double>(seeds[obj].size());
     cy /= static_cast<double>(seeds[obj].size());
+    double seed_radius = 0;  // large objects (cars) may grow farther than small ones
+    for (int px : seeds[obj])
+      seed_radius = std::max(seed_radius, std::hypot(f.xyz(px / W, px % W)[0] - cx, f.xyz(px / W, px % W)[1] - cy));
+    const double extent = std::max(p_.max_extent, seed_radius + p_.max_extent / 2);
     queue_.clear();
     for (int px : seeds[obj]) {
       const int r = px / W, c = px % W;
@@ -79,7 +83,7 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
           const double gap = dr == 0 ? gap_h : (dc == 0 ? gap_v : std::hypot(gap_h, gap_v));
           if (cv::norm(q - p) > p_.distance + p_.range_factor * rng * gap) continue;
           if (std::abs(f.range(rr, cc) - rng) > p_.distance + p_.depth_factor * rng) continue;
-          if (std::hypot(q[0] - cx, q[1] - cy) > p_.max_extent) continue;
+          if (std::hypot(q[0] - cx, q[1] - cy) > extent) continue;
           owner(rr, cc) = static_cast<int>(obj);
           mask(rr, cc) = 255;
           queue_.push_back(rr * W + cc);

@@ -21,7 +21,8 @@ struct ClusteringParams : public StageParams {
   double horizontal_distance = 0.35;  ///< epsilon_xy [m]
   double vertical_distance = 0.6;     ///< epsilon_z [m]
   int min_points = 4;                 ///< smaller clusters are dropped
-  int max_points = 300;               ///< larger clusters are dropped (walls, shelves, the floor)
+  int max_points = 3000;              ///< larger clusters are dropped (walls, shelves, the floor)
+  double max_length = 6.0;            ///< [m] longer clusters are dropped too (0 = no limit): cars fit
   bool kdtree = true;                 ///< exact KD-tree search (false: faster image window)
   int max_window = 16;                ///< image search: at most this many columns each side
 

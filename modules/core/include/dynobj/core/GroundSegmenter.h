@@ -15,7 +15,7 @@ namespace dynobj::core {
 struct GroundParams : public StageParams {
   double max_slope = 10.0 * M_PI / 180;  ///< [rad; deg in INI] steepest slope still ground
   double height_tolerance = 0.25;        ///< [m] first return of a column: |z - ground z| below this
-  double max_step = 0.08;                ///< [m] height change always accepted between neighbours
+  double max_step = 0.08;                ///< [m] a quarter of it is the noise allowance of the slope test
 
   void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
   void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
