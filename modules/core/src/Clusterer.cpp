@@ -35,6 +35,7 @@ void ClusteringParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase&
   min_points = readInt(c, s, "min_points", min_points);
   max_points = readInt(c, s, "max_points", max_points);
   max_length = readDouble(c, s, "max_length", max_length);
+  voxel = readDouble(c, s, "voxel", voxel);
   kdtree = readBool(c, s, "kdtree", kdtree);
   max_window = readInt(c, s, "max_window", max_window);
   validate();
@@ -47,6 +48,7 @@ void ClusteringParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, cons
   c.write(s, "max_points", max_points);
   c.write(s, "max_length", max_length);
   c.write(s, "kdtree", kdtree);
+  c.write(s, "voxel", voxel);
   c.write(s, "max_window", max_window);
 }
 
@@ -57,6 +59,7 @@ void ClusteringParams::validate() const {
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("max_window", max_window, 1, 1000);
   requireInRange("max_length", max_length, 0, 1e6);
+  requireInRange("voxel", voxel, 0, 0.5 * std::min(horizontal_distance, vertical_distance));
 }
 
 void computeClusterShape(const LidarFrame& f, Cluster& c) {
@@ -178,19 +181,55 @@ void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
 void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
   const int W = f.cols();
   const float zs = static_cast<float>(p_.horizontal_distance / p_.vertical_distance);
+  // With voxel > 0, the tree holds one representative point per voxel (the first feature in
+  // it): dense surfaces give many features per voxel, and linking at eps_xy = 0.35 m does not
+  // need 10 cm detail. Every feature takes its voxel's cluster.
+  std::vector<int> rep_of(pixels_.size());
   pts_.clear();
-  for (int px : pixels_) {
-    const cv::Vec3f& p = f.xyz(px / W, px % W);
-    pts_.emplace_back(p[0], p[1], p[2] * zs);
+  if (p_.voxel > 0) {
+    keys_.clear();
+    const double inv = 1.0 / p_.voxel;
+    for (std::size_t i = 0; i < pixels_.size(); i++) {
+      const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
+      const auto k = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)) & 0x1FFFFF; };
+      keys_.emplace_back((k(p[0]) << 42) | (k(p[1]) << 21) | k(p[2]), static_cast<int>(i));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    for (std::size_t j = 0; j < keys_.size(); j++) {
+      if (j == 0 || keys_[j].first != keys_[j - 1].first) {
+        const cv::Vec3f& p = f.xyz(pixels_[static_cast<std::size_t>(keys_[j].second)] / W,
+                                   pixels_[static_cast<std::size_t>(keys_[j].second)] % W);
+        pts_.emplace_back(p[0], p[1], p[2] * zs);
+      }
+      rep_of[static_cast<std::size_t>(keys_[j].second)] = static_cast<int>(pts_.size()) - 1;
+    }
+  } else {
+    for (std::size_t i = 0; i < pixels_.size(); i++) {
+      const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
+      pts_.emplace_back(p[0], p[1], p[2] * zs);
+      rep_of[i] = static_cast<int>(i);
+    }
   }
+  std::vector<int> parent(pts_.size());
+  for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
+  linkKdTree(parent);
+  // Labels must be feature indices (roots of the features' own components) for cluster().
+  std::vector<int> first_feature(pts_.size(), -1);
+  label.resize(pixels_.size());
+  for (std::size_t i = 0; i < pixels_.size(); i++) {
+    const auto r = static_cast<std::size_t>(root(parent, rep_of[i]));
+    if (first_feature[r] < 0) first_feature[r] = static_cast<int>(i);
+    label[i] = first_feature[r];
+  }
+}
+
+void Clusterer::linkKdTree(std::vector<int>& parent) {
   const PointsAdaptor adaptor{pts_};
   KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
   // Eq. (6)-(7) neighbours: a ball of radius sqrt(2) eps_xy in the scaled space contains the
   // cylinder {d_xy <= eps_xy, d_z <= eps_z}; each candidate is then checked exactly.
   const float eps = static_cast<float>(p_.horizontal_distance);
-  std::vector<int> parent(pts_.size());
-  for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
   std::vector<std::pair<std::uint32_t, float>> found;
   nanoflann::SearchParams sp;
   sp.sorted = false;
@@ -206,8 +245,6 @@ void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
       if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
     }
   }
-  label.resize(pts_.size());
-  for (std::size_t i = 0; i < pts_.size(); i++) label[i] = root(parent, static_cast<int>(i));
 }
 
 }  // namespace dynobj::core

@@ -192,7 +192,11 @@ const DetectionResult& DynamicObjectDetector::process(const LidarFrame& frame,
 }
 
 void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::vector<int>& grown) {
-  const int W = frame.cols();
+  // The grown region of each dynamic object, in one pass over the owner image.
+  std::vector<Cluster> regions(seed_track_.size());
+  const int* own = owner_.ptr<int>(0);
+  for (int i = 0; i < owner_.rows * owner_.cols; i++)
+    if (own[i] >= 0) regions[static_cast<std::size_t>(own[i])].pixels.push_back(i);
   for (const Track& tr : tracks_.tracks()) {
     if (tr.cluster < 0) continue;
     const Cluster& c = clusters_[static_cast<std::size_t>(tr.cluster)];
@@ -207,11 +211,9 @@ void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::v
     o.age = tr.age;
     const auto it = std::find(seed_track_.begin(), seed_track_.end(), tr.id);
     if (it != seed_track_.end()) {  // a dynamic object: its extent is the grown region
-      const int obj = static_cast<int>(it - seed_track_.begin());
-      o.points = grown[static_cast<std::size_t>(obj)];
-      Cluster region;
-      for (int i = 0; i < owner_.rows * W; i++)
-        if (owner_(i / W, i % W) == obj) region.pixels.push_back(i);
+      const auto obj = static_cast<std::size_t>(it - seed_track_.begin());
+      o.points = grown[obj];
+      Cluster& region = regions[obj];
       if (!region.pixels.empty()) {
         computeClusterShape(frame, region);
         o.box_min = region.min;

@@ -81,7 +81,9 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
           const cv::Vec3f& q = f.xyz(rr, cc);
           // Eq. (25), with epsilon widened by the gap between the two pixels' rays at this range.
           const double gap = dr == 0 ? gap_h : (dc == 0 ? gap_v : std::hypot(gap_h, gap_v));
-          if (cv::norm(q - p) > p_.distance + p_.range_factor * rng * gap) continue;
+          const float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+          const double eps = p_.distance + p_.range_factor * rng * gap;
+          if (static_cast<double>(dx * dx + dy * dy + dz * dz) > eps * eps) continue;
           if (std::abs(f.range(rr, cc) - rng) > p_.distance + p_.depth_factor * rng) continue;
           if (std::hypot(q[0] - cx, q[1] - cy) > extent) continue;
           owner(rr, cc) = static_cast<int>(obj);

@@ -102,7 +102,7 @@ TEST(SensorModel, EveryShippedPresetLoads) {
     int rows, cols;
   };
   for (const Expect& e : {Expect{"os0-64.ini", 64, 1024}, Expect{"os0-128.ini", 128, 1024},
-                          Expect{"os0-64-512.ini", 64, 512}, Expect{"os1-64.ini", 64, 1024}, Expect{"vlp-16.ini", 16, 1800},
+                          Expect{"os0-64-512.ini", 64, 512}, Expect{"os0-128-2048.ini", 128, 2048}, Expect{"os1-64.ini", 64, 1024}, Expect{"vlp-16.ini", 16, 1800},
                           Expect{"hdl-32.ini", 32, 2048}, Expect{"hdl-64.ini", 64, 2048}}) {
     SCOPED_TRACE(e.file);
     const SensorModel m = SensorModel::fromFile(dir + e.file);

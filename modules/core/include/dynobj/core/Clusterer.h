@@ -23,7 +23,8 @@ struct ClusteringParams : public StageParams {
   int min_points = 4;                 ///< smaller clusters are dropped
   int max_points = 3000;              ///< larger clusters are dropped (walls, shelves, the floor)
   double max_length = 6.0;            ///< [m] longer clusters are dropped too (0 = no limit): cars fit
-  bool kdtree = true;                 ///< exact KD-tree search (false: faster image window)
+  bool kdtree = true;                 ///< KD-tree search (false: range-image window search)
+  double voxel = 0.17;                ///< [m] KD-tree on one point per voxel of this size (0 = all)
   int max_window = 16;                ///< image search: at most this many columns each side
 
   void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
@@ -53,11 +54,13 @@ class Clusterer {
  private:
   void clusterImage(const LidarFrame& frame, std::vector<int>& label);
   void clusterKdTree(const LidarFrame& frame, std::vector<int>& label);
+  void linkKdTree(std::vector<int>& parent);  ///< union-find over pts_
 
   ClusteringParams p_;
   std::vector<int> pixels_;
   cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
   std::vector<int> count_, slot_;
+  std::vector<std::pair<std::uint64_t, int>> keys_;  ///< voxel key, feature index
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
 
