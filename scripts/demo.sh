@@ -3,7 +3,9 @@
 # Installs, builds (Release) and runs the main job on the bundled input.
 # Today: (1) converts the real Velodyne VLP-16 scan that MRPT ships into a LiDAR frame and writes
 # its range and intensity images as PNG (native 16 rows, and an 8x taller preview); (2) simulates
-# the labelled hall sample and writes a preview with the ground-truth moving people in red.
+# the labelled hall sample and writes a preview with the ground-truth moving people in red;
+# (3) runs the detector on the committed sample, scores it against its ground truth and writes
+# overlays (true positives red, false positives yellow, misses blue).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
@@ -18,5 +20,10 @@ log "converting ${INPUT}"
 log "simulating the hall sample (40 sweeps, OS0-64 512 x 10)"
 "$BUILD_DIR/apps/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/hall.yaml" -o "$OUT/hall-small" \
   --frames 40 --set sensor=sensors/os0-64-512.ini --set name=hall-small --preview 30 -q
+SAMPLE="$DYNOBJ_ROOT/rawlogs/hall-small/hall-small"
+log "detecting moving objects in the committed sample"
+"$BUILD_DIR/apps/dynobj-detect" -i "$SAMPLE.rawlog" --sensor-label LIDAR --gt "$SAMPLE.gt.labels" \
+  -o "$OUT/detect/hall-small.det.labels" --overlay-dir "$OUT/detect"
 log "done: images in ${OUT} (and ${OUT}/preview-x8); simulated sample and"
-log "      ${OUT}/hall-small/hall-small.preview.png (ground-truth dynamic pixels in red)"
+log "      ${OUT}/hall-small/hall-small.preview.png (ground-truth dynamic pixels in red);"
+log "      detections and overlays in ${OUT}/detect/"

@@ -155,10 +155,11 @@ int run(int argc, char** argv) {
   for (const auto& [k, v] : ms)
     std::printf("  %-18s %9.3f %8.3f\n", k.c_str(), percentile(v, 50), percentile(v, 99));
   if (truth)
-    std::printf("  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static flagged %s)\n",
+    std::printf("  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged %s%%)\n",
                 fmt(total.precision()).c_str(), fmt(total.recall()).c_str(), fmt(total.iou()).c_str(),
                 fmt(total.f1()).c_str(), static_cast<long>(total.tp), static_cast<long>(total.fp),
-                static_cast<long>(total.fn), fmt(total.falsePositiveRate()).c_str());
+                static_cast<long>(total.fn),
+                total.falsePositiveRate() ? fmt(100.0 * *total.falsePositiveRate()).c_str() : "n/a");
   if (truth)
     std::printf("  seeds (accepted clusters before region growing): precision %s, %ld points; "
                 "misses: %zu in undetected objects, %zu in detected objects\n",
