@@ -6,15 +6,8 @@
 
 namespace dynobj::core {
 
-void AssociationParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) {
-  gate_distance = readDouble(c, s, "gate_distance", gate_distance);
-  validate();
-}
-
-void AssociationParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
-                                         const std::string& s) const {
-  c.write(s, "gate_distance", gate_distance);
+void AssociationParams::visit(ParamVisitor& v) {
+  v.value("gate_distance", gate_distance);
 }
 
 void AssociationParams::validate() const { requirePositive("gate_distance", gate_distance); }

@@ -28,28 +28,15 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 
 }  // namespace
 
-void ClusteringParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                          const std::string& s) {
-  horizontal_distance = readDouble(c, s, "horizontal_distance", horizontal_distance);
-  vertical_distance = readDouble(c, s, "vertical_distance", vertical_distance);
-  min_points = readInt(c, s, "min_points", min_points);
-  max_points = readInt(c, s, "max_points", max_points);
-  max_length = readDouble(c, s, "max_length", max_length);
-  voxel = readDouble(c, s, "voxel", voxel);
-  kdtree = readBool(c, s, "kdtree", kdtree);
-  max_window = readInt(c, s, "max_window", max_window);
-  validate();
-}
-
-void ClusteringParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "horizontal_distance", horizontal_distance);
-  c.write(s, "vertical_distance", vertical_distance);
-  c.write(s, "min_points", min_points);
-  c.write(s, "max_points", max_points);
-  c.write(s, "max_length", max_length);
-  c.write(s, "kdtree", kdtree);
-  c.write(s, "voxel", voxel);
-  c.write(s, "max_window", max_window);
+void ClusteringParams::visit(ParamVisitor& v) {
+  v.value("horizontal_distance", horizontal_distance);
+  v.value("vertical_distance", vertical_distance);
+  v.value("min_points", min_points);
+  v.value("max_points", max_points);
+  v.value("max_length", max_length);
+  v.value("voxel", voxel);
+  v.value("kdtree", kdtree);
+  v.value("max_window", max_window);
 }
 
 void ClusteringParams::validate() const {

@@ -29,39 +29,20 @@ Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
 
 }  // namespace
 
-void EgoMotionParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                         const std::string& s) {
-  features = readInt(c, s, "features", features);
-  scale_factor = readDouble(c, s, "scale_factor", scale_factor);
-  levels = readInt(c, s, "levels", levels);
-  fast_threshold = readInt(c, s, "fast_threshold", fast_threshold);
-  upsample = readInt(c, s, "upsample", upsample);
-  ratio = readDouble(c, s, "ratio", ratio);
-  border = readInt(c, s, "border", border);
-  inlier_distance = readDouble(c, s, "inlier_distance", inlier_distance);
-  inlier_range_factor = readDouble(c, s, "inlier_range_factor", inlier_range_factor);
-  iterations = readInt(c, s, "iterations", iterations);
-  min_inliers = readInt(c, s, "min_inliers", min_inliers);
-  min_inlier_ratio = readDouble(c, s, "min_inlier_ratio", min_inlier_ratio);
-  seed = readInt(c, s, "seed", seed);
-  validate();
-}
-
-void EgoMotionParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
-                                       const std::string& s) const {
-  c.write(s, "features", features);
-  c.write(s, "scale_factor", scale_factor);
-  c.write(s, "levels", levels);
-  c.write(s, "fast_threshold", fast_threshold);
-  c.write(s, "upsample", upsample);
-  c.write(s, "ratio", ratio);
-  c.write(s, "border", border);
-  c.write(s, "inlier_distance", inlier_distance);
-  c.write(s, "inlier_range_factor", inlier_range_factor);
-  c.write(s, "iterations", iterations);
-  c.write(s, "min_inliers", min_inliers);
-  c.write(s, "min_inlier_ratio", min_inlier_ratio);
-  c.write(s, "seed", seed);
+void EgoMotionParams::visit(ParamVisitor& v) {
+  v.value("features", features);
+  v.value("scale_factor", scale_factor);
+  v.value("levels", levels);
+  v.value("fast_threshold", fast_threshold);
+  v.value("upsample", upsample);
+  v.value("ratio", ratio);
+  v.value("border", border);
+  v.value("inlier_distance", inlier_distance);
+  v.value("inlier_range_factor", inlier_range_factor);
+  v.value("iterations", iterations);
+  v.value("min_inliers", min_inliers);
+  v.value("min_inlier_ratio", min_inlier_ratio);
+  v.value("seed", seed);
 }
 
 void EgoMotionParams::validate() const {

@@ -27,29 +27,15 @@ void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat_
 
 }  // namespace
 
-void ForegroundParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                          const std::string& s) {
-  kernel_half_width = readInt(c, s, "kernel_half_width", kernel_half_width);
-  kernel_half_height = readInt(c, s, "kernel_half_height", kernel_half_height);
-  sigma_horizontal = readDouble(c, s, "sigma_horizontal", sigma_horizontal);
-  sigma_vertical = readDouble(c, s, "sigma_vertical", sigma_vertical);
-  threshold = readDouble(c, s, "threshold", threshold);
-  absolute = readBool(c, s, "absolute", absolute);
-  stretch_low = readDouble(c, s, "stretch_low", stretch_low);
-  stretch_high = readDouble(c, s, "stretch_high", stretch_high);
-  validate();
-}
-
-void ForegroundParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
-                                        const std::string& s) const {
-  c.write(s, "kernel_half_width", kernel_half_width);
-  c.write(s, "kernel_half_height", kernel_half_height);
-  c.write(s, "sigma_horizontal", sigma_horizontal);
-  c.write(s, "sigma_vertical", sigma_vertical);
-  c.write(s, "threshold", threshold);
-  c.write(s, "absolute", absolute);
-  c.write(s, "stretch_low", stretch_low);
-  c.write(s, "stretch_high", stretch_high);
+void ForegroundParams::visit(ParamVisitor& v) {
+  v.value("kernel_half_width", kernel_half_width);
+  v.value("kernel_half_height", kernel_half_height);
+  v.value("sigma_horizontal", sigma_horizontal);
+  v.value("sigma_vertical", sigma_vertical);
+  v.value("threshold", threshold);
+  v.value("absolute", absolute);
+  v.value("stretch_low", stretch_low);
+  v.value("stretch_high", stretch_high);
 }
 
 void ForegroundParams::validate() const {

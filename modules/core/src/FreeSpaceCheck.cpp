@@ -7,24 +7,13 @@
 
 namespace dynobj::core {
 
-void FreeSpaceParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                         const std::string& s) {
-  enabled = readBool(c, s, "enabled", enabled);
-  margin = readDouble(c, s, "margin", margin);
-  range_factor = readDouble(c, s, "range_factor", range_factor);
-  min_free_ratio = readDouble(c, s, "min_free_ratio", min_free_ratio);
-  min_evidence = readInt(c, s, "min_evidence", min_evidence);
-  lookback = readInt(c, s, "lookback", lookback);
-  validate();
-}
-
-void FreeSpaceParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "enabled", enabled);
-  c.write(s, "margin", margin);
-  c.write(s, "range_factor", range_factor);
-  c.write(s, "min_free_ratio", min_free_ratio);
-  c.write(s, "min_evidence", min_evidence);
-  c.write(s, "lookback", lookback);
+void FreeSpaceParams::visit(ParamVisitor& v) {
+  v.value("enabled", enabled);
+  v.value("margin", margin);
+  v.value("range_factor", range_factor);
+  v.value("min_free_ratio", min_free_ratio);
+  v.value("min_evidence", min_evidence);
+  v.value("lookback", lookback);
 }
 
 void FreeSpaceParams::validate() const {

@@ -8,18 +8,10 @@
 
 namespace dynobj::core {
 
-void GroundParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                      const std::string& s) {
-  max_slope = readDegrees(c, s, "max_slope", max_slope);
-  height_tolerance = readDouble(c, s, "height_tolerance", height_tolerance);
-  max_step = readDouble(c, s, "max_step", max_step);
-  validate();
-}
-
-void GroundParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "max_slope", max_slope * 180 / M_PI);
-  c.write(s, "height_tolerance", height_tolerance);
-  c.write(s, "max_step", max_step);
+void GroundParams::visit(ParamVisitor& v) {
+  v.degrees("max_slope", max_slope);
+  v.value("height_tolerance", height_tolerance);
+  v.value("max_step", max_step);
 }
 
 void GroundParams::validate() const {

@@ -10,26 +10,14 @@
 
 namespace dynobj::core {
 
-void MovementParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                        const std::string& s) {
-  window = readInt(c, s, "window", window);
-  min_displacement = readDouble(c, s, "min_displacement", min_displacement);
-  min_straightness = readDouble(c, s, "min_straightness", min_straightness);
-  long_object_angle = readDegrees(c, s, "long_object_angle", long_object_angle);
-  long_object_elongation = readDouble(c, s, "long_object_elongation", long_object_elongation);
-  long_object_length = readDouble(c, s, "long_object_length", long_object_length);
-  max_speed = readDouble(c, s, "max_speed", max_speed);
-  validate();
-}
-
-void MovementParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "window", window);
-  c.write(s, "min_displacement", min_displacement);
-  c.write(s, "min_straightness", min_straightness);
-  c.write(s, "long_object_angle", long_object_angle * 180 / M_PI);
-  c.write(s, "long_object_elongation", long_object_elongation);
-  c.write(s, "long_object_length", long_object_length);
-  c.write(s, "max_speed", max_speed);
+void MovementParams::visit(ParamVisitor& v) {
+  v.value("window", window);
+  v.value("min_displacement", min_displacement);
+  v.value("min_straightness", min_straightness);
+  v.degrees("long_object_angle", long_object_angle);
+  v.value("long_object_elongation", long_object_elongation);
+  v.value("long_object_length", long_object_length);
+  v.value("max_speed", max_speed);
 }
 
 void MovementParams::validate() const {

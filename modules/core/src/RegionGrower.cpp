@@ -7,23 +7,12 @@
 
 namespace dynobj::core {
 
-void RegionGrowingParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                             const std::string& s) {
-  distance = readDouble(c, s, "distance", distance);
-  range_factor = readDouble(c, s, "range_factor", range_factor);
-  depth_factor = readDouble(c, s, "depth_factor", depth_factor);
-  max_extent = readDouble(c, s, "max_extent", max_extent);
-  max_pixels = readInt(c, s, "max_pixels", max_pixels);
-  validate();
-}
-
-void RegionGrowingParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) const {
-  c.write(s, "distance", distance);
-  c.write(s, "range_factor", range_factor);
-  c.write(s, "depth_factor", depth_factor);
-  c.write(s, "max_extent", max_extent);
-  c.write(s, "max_pixels", max_pixels);
+void RegionGrowingParams::visit(ParamVisitor& v) {
+  v.value("distance", distance);
+  v.value("range_factor", range_factor);
+  v.value("depth_factor", depth_factor);
+  v.value("max_extent", max_extent);
+  v.value("max_pixels", max_pixels);
 }
 
 void RegionGrowingParams::validate() const {

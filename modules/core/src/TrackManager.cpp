@@ -7,26 +7,14 @@
 
 namespace dynobj::core {
 
-void TrackingParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
-                                        const std::string& s) {
-  prediction = readBool(c, s, "prediction", prediction);
-  max_missed = readInt(c, s, "max_missed", max_missed);
-  process_noise = readDouble(c, s, "process_noise", process_noise);
-  measurement_noise = readDouble(c, s, "measurement_noise", measurement_noise);
-  hysteresis = readBool(c, s, "hysteresis", hysteresis);
-  confirm_frames = readInt(c, s, "confirm_frames", confirm_frames);
-  release_frames = readInt(c, s, "release_frames", release_frames);
-  validate();
-}
-
-void TrackingParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "prediction", prediction);
-  c.write(s, "max_missed", max_missed);
-  c.write(s, "process_noise", process_noise);
-  c.write(s, "measurement_noise", measurement_noise);
-  c.write(s, "hysteresis", hysteresis);
-  c.write(s, "confirm_frames", confirm_frames);
-  c.write(s, "release_frames", release_frames);
+void TrackingParams::visit(ParamVisitor& v) {
+  v.value("prediction", prediction);
+  v.value("max_missed", max_missed);
+  v.value("process_noise", process_noise);
+  v.value("measurement_noise", measurement_noise);
+  v.value("hysteresis", hysteresis);
+  v.value("confirm_frames", confirm_frames);
+  v.value("release_frames", release_frames);
 }
 
 void TrackingParams::validate() const {

@@ -17,17 +17,10 @@ namespace {
 using detail::YamlView;
 constexpr double kDeg = M_PI / 180.0;
 
-/// A value given as one number or as a [lo, hi] range; drawn uniformly when a range.
-double drawRange(const YamlView& v, const std::string& key, double def, std::mt19937& rng) {
-  if (!v.has(key)) return def;
-  const YamlView c = v.child(key);
-  if (!c.isSequence()) return c.number();
-  const auto r = c.numbers();
-  if (r.size() != 2 || r[1] < r[0]) c.fail("expected a number or [lo, hi]");
-  return std::uniform_real_distribution<double>(r[0], r[1])(rng);
-}
-
-std::pair<double, double> rangeOf(const YamlView& v, const std::string& key, double lo, double hi) {
+/// A value given as one number or as a [lo, hi] range (is_range tells which).
+std::pair<double, double> rangeOf(const YamlView& v, const std::string& key, double lo, double hi,
+                                  bool* is_range = nullptr) {
+  if (is_range) *is_range = false;
   if (!v.has(key)) return {lo, hi};
   const YamlView c = v.child(key);
   if (!c.isSequence()) {
@@ -36,7 +29,15 @@ std::pair<double, double> rangeOf(const YamlView& v, const std::string& key, dou
   }
   const auto r = c.numbers();
   if (r.size() != 2 || r[1] < r[0]) c.fail("expected a number or [lo, hi]");
+  if (is_range) *is_range = true;
   return {r[0], r[1]};
+}
+
+/// rangeOf(), drawn uniformly when a range.
+double drawRange(const YamlView& v, const std::string& key, double def, std::mt19937& rng) {
+  bool is_range = false;
+  const auto [lo, hi] = rangeOf(v, key, def, def, &is_range);
+  return is_range ? std::uniform_real_distribution<double>(lo, hi)(rng) : lo;
 }
 
 Eigen::Vector2d vec2(const YamlView& v, const std::string& key) {

@@ -14,8 +14,7 @@ namespace dynobj::core {
 struct AssociationParams : public StageParams {
   double gate_distance = 1.0;  ///< d_max [m]: farther pairs cost "infinity" (Eq. 9)
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

@@ -27,8 +27,7 @@ struct ClusteringParams : public StageParams {
   double voxel = 0.17;                ///< [m] KD-tree on one point per voxel of this size (0 = all)
   int max_window = 16;                ///< image search: at most this many columns each side
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

@@ -34,8 +34,7 @@ struct EgoMotionParams : public StageParams {
   double min_inlier_ratio = 0.3;    ///< inliers / matches below this -> failed
   int seed = 1;                     ///< RANSAC random seed
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

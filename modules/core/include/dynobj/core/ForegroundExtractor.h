@@ -23,8 +23,7 @@ struct ForegroundParams : public StageParams {
   double stretch_low = 1.0;         ///< percentile mapped to 32 (of 0..255)
   double stretch_high = 99.0;       ///< percentile mapped to 223
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

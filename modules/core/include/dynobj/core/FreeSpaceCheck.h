@@ -28,8 +28,7 @@ struct FreeSpaceParams : public StageParams {
   int min_evidence = 3;         ///< fewer decisive points: no verdict (the candidate is kept)
   int lookback = 10;            ///< compare with the frame this many frames back (or the oldest kept)
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

@@ -17,8 +17,7 @@ struct GroundParams : public StageParams {
   double height_tolerance = 0.25;        ///< [m] first return of a column: |z - ground z| below this
   double max_step = 0.08;                ///< [m] a quarter of it is the noise allowance of the slope test
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

@@ -30,8 +30,7 @@ struct MovementParams : public StageParams {
   double long_object_length = 0.5;      ///< ... and this long [m] are tested for Eq. (23)
   double max_speed = 30.0;           ///< [m/s] faster is an association error, not motion
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

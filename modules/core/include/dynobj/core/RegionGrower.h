@@ -23,8 +23,7 @@ struct RegionGrowingParams : public StageParams {
                               ///< or than half the seeds' own extent plus this, if larger
   int max_pixels = 20000;     ///< safety limit per object
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

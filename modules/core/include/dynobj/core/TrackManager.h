@@ -25,8 +25,7 @@ struct TrackingParams : public StageParams {
   int confirm_frames = 2;          ///< consecutive moving decisions to become dynamic
   int release_frames = 4;          ///< consecutive static decisions to become static again
 
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& s) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const override;
+  void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/Params.h"
+
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+
+namespace dynobj::core {
+namespace {
+
+class Reader : public ParamVisitor {
+ public:
+  Reader(const ::mrpt::config::CConfigFileBase& c, const std::string& s) : c_(c), s_(s) {}
+  void value(const char* key, double& v) override { v = readDouble(c_, s_, key, v); }
+  void value(const char* key, int& v) override { v = readInt(c_, s_, key, v); }
+  void value(const char* key, bool& v) override { v = readBool(c_, s_, key, v); }
+  void degrees(const char* key, double& v) override { v = readDegrees(c_, s_, key, v); }
+
+ private:
+  const ::mrpt::config::CConfigFileBase& c_;
+  const std::string& s_;
+};
+
+class Writer : public ParamVisitor {
+ public:
+  Writer(::mrpt::config::CConfigFileBase& c, const std::string& s) : c_(c), s_(s) {}
+  void value(const char* key, double& v) override { c_.write(s_, key, v); }
+  void value(const char* key, int& v) override { c_.write(s_, key, v); }
+  void value(const char* key, bool& v) override { c_.write(s_, key, v); }
+  void degrees(const char* key, double& v) override { c_.write(s_, key, v * 180.0 / M_PI); }
+
+ private:
+  ::mrpt::config::CConfigFileBase& c_;
+  const std::string& s_;
+};
+
+}  // namespace
+
+void StageParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                                     const std::string& section) {
+  Reader r(c, section);
+  visit(r);
+  validate();
+}
+
+void StageParams::saveToConfigFile(::mrpt::config::CConfigFileBase& c,
+                                   const std::string& section) const {
+  Writer w(c, section);
+  const_cast<StageParams*>(this)->visit(w);  // the writer only reads the fields
+}
+
+}  // namespace dynobj::core
