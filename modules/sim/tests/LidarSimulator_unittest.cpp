@@ -156,3 +156,21 @@ TEST(LidarSimulator, SequenceFilesRoundTrip) {
   while (std::getline(csv, line)) lines++;
   EXPECT_EQ(lines, 1 + 10);
 }
+
+TEST(LidarSimulator, MotionDistortionShiftsColumnsOnlyWhenMoving) {
+  // The robot drives at 5 m/s along +X towards a wall across its path: with distortion, columns
+  // fired later see the wall from nearer, so ranges differ from the undistorted sweep; standing
+  // still, nothing changes.
+  const std::string wall = "static:\n  - {box: {center: [8, 0, 1.5], size: [0.2, 40, 3]}}\n";
+  const std::string drive = "{trajectory: {type: waypoints, points: [[-10, 0], [10, 0]], speed: 5, loop: false}}";
+  auto run = [&](const std::string& platform, bool distortion) {
+    auto s = load(base(wall, platform));
+    s.motion_distortion = distortion;
+    return LidarSimulator(s).simulate(5);
+  };
+  const auto moving_plain = run(drive, false), moving_dist = run(drive, true);
+  const auto still_plain = run("{trajectory: {type: stationary, at: [0, 0]}}", false);
+  const auto still_dist = run("{trajectory: {type: stationary, at: [0, 0]}}", true);
+  EXPECT_EQ(cv::norm(still_plain.frame.range, still_dist.frame.range, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(moving_plain.frame.range, moving_dist.frame.range, cv::NORM_INF), 0.05);
+}
