@@ -5,6 +5,7 @@
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/core/LabelFile.h>
 #include <dynobj/core/Metrics.h>
+#include <dynobj/core/TimingStats.h>
 #include <dynobj/core/TumFile.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
 #include <mrpt/config/CConfigFile.h>
@@ -27,13 +28,6 @@ std::string fmt(const std::optional<double>& v) {
   char b[32];
   std::snprintf(b, sizeof(b), "%.3f", *v);
   return b;
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const auto k = static_cast<std::size_t>(q / 100.0 * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
 }
 
 int run(int argc, char** argv) {
@@ -77,7 +71,7 @@ int run(int argc, char** argv) {
   std::unique_ptr<dynobj::core::LabelFileWriter> writer;
   dynobj::mrpt::LidarObservationStream::Item item;
   dynobj::core::Confusion total, seeds_total;
-  std::map<std::string, std::vector<double>> ms;
+  dynobj::core::TimingStats timing;
   std::size_t frames = 0, ego_failed = 0, truth_pos = 0, fn_grow = 0, fn_missed = 0;
   const dynobj::core::StampedPose* prev_pose = nullptr;
   while (stream.next(item)) {
@@ -95,11 +89,7 @@ int run(int argc, char** argv) {
       writer = std::make_unique<dynobj::core::LabelFileWriter>(out.getValue(), f.rows(), f.cols());
     if (writer) writer->write(f.timestamp_ns, dynobj::core::pixelsOfMask(r.dynamic));
     const StageTimings& t = r.timings;
-    for (const auto& [k, v] : std::map<std::string, double>{
-             {"1 ground", t.ground}, {"2 foreground", t.foreground}, {"3 ego-motion", t.ego_motion},
-             {"4 clustering", t.clustering}, {"5 association", t.association},
-             {"6 movement", t.movement}, {"7 region growing", t.region_growing}, {"total", t.total}})
-      ms[k].push_back(v);
+    timing.add(t);
     if (!r.ego_motion.ok && frames > 0) ego_failed++;
     dynobj::core::Confusion c;
     if (truth) {
@@ -151,9 +141,9 @@ int run(int argc, char** argv) {
   if (writer) writer->close();
   std::printf("dynobj-detect: %zu frames of %dx%d, ego-motion failed on %zu\n", frames,
               item.frame.rows(), item.frame.cols(), ego_failed);
-  std::printf("  stage              median ms   p99 ms\n");
-  for (const auto& [k, v] : ms)
-    std::printf("  %-18s %9.3f %8.3f\n", k.c_str(), percentile(v, 50), percentile(v, 99));
+  std::fflush(stdout);
+  timing.print(std::cout);
+  std::cout.flush();
   if (truth)
     std::printf("  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged %s%%)\n",
                 fmt(total.precision()).c_str(), fmt(total.recall()).c_str(), fmt(total.iou()).c_str(),

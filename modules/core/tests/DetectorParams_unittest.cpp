@@ -55,3 +55,25 @@ TEST(DetectorParams, BadValuesNameSectionAndKey) {
     EXPECT_NE(std::string(e.what()).find("[region_growing] distance"), std::string::npos) << e.what();
   }
 }
+
+#include <dynobj/core/TimingStats.h>
+
+#include <sstream>
+
+TEST(TimingStats, MedianAndP99) {
+  TimingStats s;
+  for (int i = 1; i <= 101; i++) {
+    StageTimings t;
+    t.total = i;
+    t.clustering = 2 * i;
+    s.add(t);
+  }
+  EXPECT_EQ(s.frames(), 101u);
+  EXPECT_DOUBLE_EQ(s.percentile("total", 50), 51);
+  EXPECT_DOUBLE_EQ(s.percentile("total", 99), 100);
+  EXPECT_DOUBLE_EQ(s.percentile("clustering", 50), 102);
+  EXPECT_THROW(s.percentile("nope", 50), std::invalid_argument);
+  std::ostringstream out;
+  s.print(out);
+  EXPECT_NE(out.str().find("total"), std::string::npos);
+}

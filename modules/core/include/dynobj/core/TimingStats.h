@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Per-stage timing statistics over many frames (median and 99th percentile), for benchmarks.
+#pragma once
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "dynobj/core/DynamicObjectDetector.h"
+
+namespace dynobj::core {
+
+class TimingStats {
+ public:
+  /// Records one frame's stage timings.
+  void add(const StageTimings& t);
+  std::size_t frames() const { return frames_; }
+  /// q-th percentile (0..100) of a stage's times [ms]; stages: "ground", "foreground",
+  /// "ego-motion", "clustering", "association", "movement", "region growing", "total".
+  double percentile(const std::string& stage, double q) const;
+  /// A table "stage  median ms  p99 ms", stages in pipeline order.
+  void print(std::ostream& out) const;
+
+ private:
+  std::map<std::string, std::vector<double>> ms_;
+  std::size_t frames_ = 0;
+};
+
+}  // namespace dynobj::core
