@@ -2,6 +2,7 @@
 #include "dynobj/core/EgoMotionEstimator.h"
 
 #include <Eigen/Geometry>
+#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -36,6 +37,7 @@ void EgoMotionParams::visit(ParamVisitor& v) {
   v.value("fast_threshold", fast_threshold);
   v.value("upsample", upsample);
   v.value("ratio", ratio);
+  v.value("match_window", match_window);
   v.value("border", border);
   v.value("inlier_distance", inlier_distance);
   v.value("inlier_range_factor", inlier_range_factor);
@@ -52,6 +54,7 @@ void EgoMotionParams::validate() const {
   requireInRange("fast_threshold", fast_threshold, 1, 255);
   requireInRange("upsample", upsample, 1, 4);
   requireInRange("ratio", ratio, 0.1, 1.0);
+  requireInRange("match_window", match_window, 0, 100000);
   requireInRange("border", border, 0, 20);
   requirePositive("inlier_distance", inlier_distance);
   requireInRange("inlier_range_factor", inlier_range_factor, 0, 1);
@@ -119,24 +122,70 @@ EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<f
                                        const cv::Mat_<std::uint8_t>& exclude) {
   EgoMotion em;
   detect(frame, intensity, exclude, cur_);
-  if (!have_prev_ || prev_.descriptors.empty() || cur_.descriptors.empty()) {
-    std::swap(prev_, cur_);
-    have_prev_ = true;
-    return em;
+  if (have_prev_ && !prev_.descriptors.empty() && !cur_.descriptors.empty()) {
+    std::vector<std::pair<int, int>> pairs;
+    match(frame.cols(), p_.match_window, pairs);
+    solve(pairs, em);
+    if (!em.ok && p_.match_window > 0) {  // a fast turn: search every pair before giving up
+      match(frame.cols(), 0, pairs);
+      solve(pairs, em);
+    }
   }
-  std::vector<std::vector<cv::DMatch>> knn;
-  matcher_.knnMatch(cur_.descriptors, prev_.descriptors, knn, 2);
+  std::swap(prev_, cur_);
+  have_prev_ = true;
+  return em;
+}
+
+void EgoMotionEstimator::match(int cols, int window, std::vector<std::pair<int, int>>& out) {
+  out.clear();
+  if (window <= 0) {
+    std::vector<std::vector<cv::DMatch>> knn;
+    matcher_.knnMatch(cur_.descriptors, prev_.descriptors, knn, 2);
+    for (const auto& m : knn)
+      if (m.size() == 2 && m[0].distance <= p_.ratio * m[1].distance)
+        out.emplace_back(m[0].queryIdx, m[0].trainIdx);
+    return;
+  }
+  // Previous keypoints bucketed by column; each current keypoint is compared with the buckets
+  // within `window` columns (wrapping around the 360 degree seam).
+  constexpr int kBucket = 16;
+  const int nb = (cols + kBucket - 1) / kBucket, reach = (window + kBucket - 1) / kBucket;
+  buckets_.assign(static_cast<std::size_t>(nb), {});
+  for (std::size_t j = 0; j < prev_.pixels.size(); j++)
+    buckets_[static_cast<std::size_t>((prev_.pixels[j] % cols) / kBucket)].push_back(static_cast<int>(j));
+  const int bytes = cur_.descriptors.cols;
+  for (int i = 0; i < cur_.descriptors.rows; i++) {
+    const std::uint8_t* a = cur_.descriptors.ptr<std::uint8_t>(i);
+    const int b0 = (cur_.pixels[static_cast<std::size_t>(i)] % cols) / kBucket;
+    int best = -1, d1 = 1 << 30, d2 = 1 << 30;
+    const int span = std::min(nb, 2 * reach + 1);  // distinct buckets, even when they wrap
+    for (int k = 0; k < span; k++) {
+      for (int j : buckets_[static_cast<std::size_t>(((b0 - reach + k) % nb + nb) % nb)]) {
+        const int d = cv::hal::normHamming(a, prev_.descriptors.ptr<std::uint8_t>(j), bytes);
+        if (d < d1) {
+          d2 = d1;
+          d1 = d;
+          best = j;
+        } else if (d < d2) {
+          d2 = d;
+        }
+      }
+    }
+    if (best >= 0 && d2 < (1 << 30) && d1 <= p_.ratio * d2) out.emplace_back(i, best);
+  }
+}
+
+void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, EgoMotion& em) {
+  em = EgoMotion{};
   std::vector<Eigen::Vector3d> src, dst;  // current -> previous
-  for (const auto& m : knn) {
-    if (m.size() < 2 || m[0].distance > p_.ratio * m[1].distance) continue;
-    const cv::Point3f& a = cur_.points[static_cast<std::size_t>(m[0].queryIdx)];
-    const cv::Point3f& b = prev_.points[static_cast<std::size_t>(m[0].trainIdx)];
+  for (const auto& [i, j] : pairs) {
+    const cv::Point3f& a = cur_.points[static_cast<std::size_t>(i)];
+    const cv::Point3f& b = prev_.points[static_cast<std::size_t>(j)];
     src.emplace_back(a.x, a.y, a.z);
     dst.emplace_back(b.x, b.y, b.z);
   }
   em.matches = static_cast<int>(src.size());
-  std::swap(prev_, cur_);
-  if (em.matches < std::max(3, p_.min_inliers)) return em;
+  if (em.matches < std::max(3, p_.min_inliers)) return;
 
   // RANSAC over minimal 3-point samples, then a least-squares refit on all inliers (Eq. 5).
   const int n = em.matches;
@@ -166,7 +215,7 @@ EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<f
       best_in = in;
     }
   }
-  if (best < 3) return em;
+  if (best < 3) return;
   std::vector<Eigen::Vector3d> si, di;
   for (int i = 0; i < n; i++)
     if (best_in[static_cast<std::size_t>(i)]) {
@@ -177,7 +226,6 @@ EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<f
   em.inliers = countInliers(em.motion, in);
   em.ok = em.inliers >= p_.min_inliers && em.inliers >= p_.min_inlier_ratio * n;
   em.source = "intensity";
-  return em;
 }
 
 void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {

@@ -26,6 +26,8 @@ struct EgoMotionParams : public StageParams {
   int fast_threshold = 10;          ///< ORB fastThreshold (10 suits sparse indoor scenes)
   int upsample = 1;                 ///< vertical upsampling factor (1 = none; 2 = same accuracy, slower)
   double ratio = 0.8;               ///< Lowe ratio test
+  int match_window = 64;            ///< [columns] match only keypoints this close in azimuth
+                                    ///< (0 = all); on failure, all are tried before giving up
   int border = 2;                   ///< [px] no keypoint this close to a no-return pixel
   double inlier_distance = 0.10;    ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
@@ -72,6 +74,10 @@ class EgoMotionEstimator {
   };
   void detect(const LidarFrame& frame, const cv::Mat_<float>& intensity,
               const cv::Mat_<std::uint8_t>& exclude, Features& out);
+  /// Ratio-test matches current -> previous; window = 0: all pairs (OpenCV brute force).
+  void match(int cols, int window, std::vector<std::pair<int, int>>& out);
+  /// RANSAC + least squares on the matched 3D points (Eq. 5); fills motion, inliers, ok.
+  void solve(const std::vector<std::pair<int, int>>& pairs, EgoMotion& em);
 
   EgoMotionParams p_;
   cv::Ptr<cv::ORB> orb_;
@@ -80,6 +86,7 @@ class EgoMotionEstimator {
   bool have_prev_ = false;
   std::mt19937 rng_;
   cv::Mat img8_, up_, padded_, mask_, mask_up_, mask_pad_;
+  std::vector<std::vector<int>> buckets_;
 };
 
 }  // namespace dynobj::core
