@@ -5,10 +5,15 @@
 #include <dynobj/core/Metrics.h>
 #include <dynobj/core/TumFile.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
+#include <dynobj/mrpt/PointCloudFilterAdapter.h>
+#include <dynobj/mrpt/TimeConversion.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPose3D.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 
 using namespace dynobj;
 
@@ -107,4 +112,46 @@ TEST(Detector, ResetForgetsEverything) {
     EXPECT_EQ(cv::countNonZero(da != rb.dynamic), 0);
     EXPECT_EQ(ra.frame_index, rb.frame_index);
   }
+}
+
+TEST(Detector, BehindMrptsPointCloudFilterInterface) {
+  const sim::LidarSimulator simu(sim::Scenario::fromYamlFile(
+      std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml", DYNOBJ_SHARE_DIR,
+      {{"frames", "30"}, {"sensor", "sensors/os0-64-512.ini"}}));
+  dynobj::mrpt::PointCloudFilterAdapter adapter(simu.scenario().sensor);
+  ::mrpt::maps::CPointCloudFilterBase& filter = adapter;  // used through MRPT's interface
+  std::size_t flagged = 0, correct = 0;
+  for (int k = 0; k < 30; k++) {
+    const auto sweep = simu.simulate(k);
+    ::mrpt::maps::CSimplePointsMap cloud;
+    std::vector<int> pixel;  // pixel of each point, to score against ground truth
+    for (int r = 0; r < sweep.frame.rows(); r++)
+      for (int c = 0; c < sweep.frame.cols(); c++)
+        if (sweep.frame.isValid(r, c)) {
+          const cv::Vec3f& p = sweep.frame.xyz(r, c);
+          cloud.insertPoint(p[0], p[1], p[2]);
+          pixel.push_back(r * sweep.frame.cols() + c);
+        }
+    const std::size_t before = cloud.size();
+    std::vector<bool> del;
+    ::mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
+    extra.out_deletion_mask = &del;
+    const auto pose = ::mrpt::poses::CPose3D::FromHomogeneousMatrix(
+        ::mrpt::math::CMatrixDouble44(sweep.sensor_pose.matrix()));
+    filter.filter(&cloud, dynobj::mrpt::fromUnixNs(sweep.timestamp_ns), pose, &extra);
+    ASSERT_EQ(del.size(), before);
+    const auto n = static_cast<std::size_t>(std::count(del.begin(), del.end(), true));
+    EXPECT_EQ(cloud.size(), before - n);  // deleted exactly the flagged points
+    for (std::size_t i = 0; i < del.size(); i++)
+      if (del[i]) {
+        flagged++;
+        correct += sweep.dynamic(pixel[i] / sweep.frame.cols(), pixel[i] % sweep.frame.cols()) != 0;
+      }
+  }
+  // No intensity through this interface: features come from the range image. Measured: 1461
+  // points flagged, 1389 (95 %) on moving actors; the test asserts that most of what it removes
+  // is moving people.
+  std::printf("adapter: %zu points flagged, %zu on moving actors\n", flagged, correct);
+  EXPECT_GT(flagged, 0u);
+  EXPECT_GE(static_cast<double>(correct), 0.8 * static_cast<double>(flagged));
 }

@@ -1,15 +1,24 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Reads the first LiDAR observation of a rawlog and prints its frame size.
-#include <dynobj/mrpt/LidarObservationStream.h>
+// Embedding the filter in your own MRPT app: every observation goes through the filter (drop
+// mode: dynamic points removed) before it is inserted into a point map.
+#include <dynobj/mrpt/DynamicObjectFilter.h>
+#include <dynobj/mrpt/RawlogReader.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 
 #include <iostream>
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
-  dynobj::mrpt::LidarObservationStream stream(argv[1], dynobj::mrpt::ObservationConverter(), {});
-  dynobj::mrpt::LidarObservationStream::Item item;
-  if (!stream.next(item)) return 1;
-  std::cout << item.frame.rows() << " x " << item.frame.cols() << " frame, "
-            << item.frame.sourcePointCount() << " points\n";
+  dynobj::mrpt::DynamicObjectFilter filter({dynobj::mrpt::FilterMode::Drop, "", std::nullopt, {}});
+  mrpt::maps::CSimplePointsMap map;
+  dynobj::mrpt::RawlogReader rawlog(argv[1]);
+  for (dynobj::mrpt::RawlogEntry e; rawlog.next(e);)
+    for (auto& obs : e.observations()) {
+      filter.filter(obs);        // tags / removes the moving objects' points in place
+      map.insertObservation(*obs);  // stock MRPT insertion sees the static points only
+    }
+  const auto& s = filter.summary();
+  std::cout << s.lidar << " LiDAR frames, " << s.dynamic_points << " dynamic points removed, map: "
+            << map.size() << " points\n";
   return 0;
 }
