@@ -6,15 +6,9 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 
+#include "detail.h"
 #include "dynobj/mrpt/RangeScanTagging.h"
 
-namespace {
-// MRPT's RTTI macros name `mrpt::rtti` unqualified: keep them at global scope.
-template <class T>
-bool isClass(const ::mrpt::obs::CObservation& o) {
-  return IS_CLASS(o, T);
-}
-}  // namespace
 
 namespace dynobj::mrpt {
 
@@ -60,7 +54,7 @@ const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservatio
   if (!obs || !ObservationConverter::isLidarObservation(*obs)) return nullptr;
   if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) return nullptr;
   const std::string cls = obs->GetRuntimeClass()->className;
-  auto* scan3d = isClass<mobs::CObservation3DRangeScan>(*obs)
+  auto* scan3d = dynobj_rtti::isClass<mobs::CObservation3DRangeScan>(*obs)
                      ? dynamic_cast<mobs::CObservation3DRangeScan*>(obs.get())
                      : nullptr;
 

@@ -10,14 +10,6 @@
 #include "detail.h"
 #include "dynobj/mrpt/TimeConversion.h"
 
-namespace {
-// MRPT's RTTI macros name `mrpt::rtti` unqualified, which inside dynobj::mrpt would resolve to
-// this project's namespace: keep them at global scope.
-template <class T>
-bool isClass(const ::mrpt::obs::CObservation& o) {
-  return IS_CLASS(o, T);
-}
-}  // namespace
 
 namespace dynobj::mrpt {
 
@@ -48,10 +40,10 @@ ObservationConverter::ObservationConverter(std::optional<core::SensorModel> sens
 }
 
 bool ObservationConverter::isLidarObservation(const mobs::CObservation& obs) {
-  return isClass<mobs::CObservation3DRangeScan>(obs) ||
-         isClass<mobs::CObservationVelodyneScan>(obs) ||
-         isClass<mobs::CObservationPointCloud>(obs) ||
-         isClass<mobs::CObservationRotatingScan>(obs);
+  return dynobj_rtti::isClass<mobs::CObservation3DRangeScan>(obs) ||
+         dynobj_rtti::isClass<mobs::CObservationVelodyneScan>(obs) ||
+         dynobj_rtti::isClass<mobs::CObservationPointCloud>(obs) ||
+         dynobj_rtti::isClass<mobs::CObservationRotatingScan>(obs);
 }
 
 core::ProjectionStats ObservationConverter::convert(const mobs::CObservation& obs,
@@ -62,16 +54,16 @@ core::ProjectionStats ObservationConverter::convert(const mobs::CObservation& ob
     detail::fail(obs, std::string("cannot load its externally stored data: ") + e.what());
   }
   core::ProjectionStats st;
-  if (isClass<mobs::CObservation3DRangeScan>(obs))
+  if (dynobj_rtti::isClass<mobs::CObservation3DRangeScan>(obs))
     st = detail::convertRangeScan3D(dynamic_cast<const mobs::CObservation3DRangeScan&>(obs),
                                     sensor_, frame);
-  else if (isClass<mobs::CObservationVelodyneScan>(obs))
+  else if (dynobj_rtti::isClass<mobs::CObservationVelodyneScan>(obs))
     st = detail::convertVelodyne(dynamic_cast<const mobs::CObservationVelodyneScan&>(obs), sensor_,
                                  frame);
-  else if (isClass<mobs::CObservationPointCloud>(obs))
+  else if (dynobj_rtti::isClass<mobs::CObservationPointCloud>(obs))
     st = detail::convertPointCloud(dynamic_cast<const mobs::CObservationPointCloud&>(obs), sensor_,
                                    frame);
-  else if (isClass<mobs::CObservationRotatingScan>(obs))
+  else if (dynobj_rtti::isClass<mobs::CObservationRotatingScan>(obs))
     st = detail::convertRotatingScan(dynamic_cast<const mobs::CObservationRotatingScan&>(obs),
                                      sensor_, frame);
   else

@@ -10,6 +10,15 @@
 #include <optional>
 #include <string>
 
+/// MRPT's RTTI macros name `mrpt::rtti` unqualified, which inside dynobj::mrpt would resolve to
+/// this project's namespace: the exact-class test lives at global scope.
+namespace dynobj_rtti {
+template <class T>
+bool isClass(const ::mrpt::obs::CObservation& o) {
+  return IS_CLASS(o, T);
+}
+}  // namespace dynobj_rtti
+
 namespace mrpt::obs {
 class CObservation3DRangeScan;
 class CObservationVelodyneScan;
