@@ -13,6 +13,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <iostream>
 #include <memory>
 
@@ -39,6 +41,13 @@ int run(int argc, char** argv) {
                                      "label", cmd);
   TCLAP::ValueArg<std::string> labels_out("", "labels-out", "Also write the detections (label file v1)",
                                           false, "", "file.labels", cmd);
+  TCLAP::ValueArg<std::string> tracks_out("", "tracks-out",
+                                          "Also write the tracked objects, one CSV row per frame and track",
+                                          false, "", "file.csv", cmd);
+  TCLAP::ValueArg<std::size_t> from("", "from", "First entry to filter (earlier ones are copied)", false, 0,
+                                    "N", cmd);
+  TCLAP::ValueArg<std::size_t> to("", "to", "Last entry to filter (later ones are copied)", false,
+                                  std::numeric_limits<std::size_t>::max(), "N", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
   dynobj::mrpt::DynamicObjectFilter::Options opts;
@@ -75,6 +84,21 @@ int run(int argc, char** argv) {
   } cleanup{partial};
   auto arch = ::mrpt::serialization::archiveFrom(file);
 
+  std::ofstream tracks;
+  const std::string tracks_partial = tracks_out.getValue() + ".partial";
+  if (tracks_out.isSet()) {
+    tracks.open(tracks_partial);
+    if (!tracks) throw std::runtime_error("cannot write '" + tracks_partial + "'");
+    tracks << "timestamp_ns,sensor_label,id,dynamic,age,points,x,y,z,vx,vy,min_x,min_y,min_z,max_x,max_y,max_z\n";
+  }
+  struct TracksCleanup {
+    std::string path;
+    bool armed;
+    ~TracksCleanup() {
+      if (armed) std::remove(path.c_str());
+    }
+  } tracks_cleanup{tracks_partial, tracks_out.isSet()};
+
   dynobj::mrpt::DynamicObjectFilter filter(opts);
   std::unique_ptr<dynobj::core::LabelFileWriter> labels;
   std::string labels_sensor;
@@ -83,6 +107,13 @@ int run(int argc, char** argv) {
   dynobj::mrpt::RawlogEntry e;
   std::vector<::mrpt::obs::CObservation::Ptr> extra;
   auto onResult = [&](const ::mrpt::obs::CObservation& obs, const dynobj::core::DetectionResult* r) {
+    if (r && tracks_out.isSet())
+      for (const auto& o : r->objects)
+        tracks << r->timestamp_ns << ',' << obs.sensorLabel << ',' << o.id << ',' << (o.dynamic ? 1 : 0) << ','
+               << o.age << ',' << o.points << ',' << o.centroid.x() << ',' << o.centroid.y() << ','
+               << o.centroid.z() << ',' << o.velocity.x() << ',' << o.velocity.y() << ',' << o.box_min.x()
+               << ',' << o.box_min.y() << ',' << o.box_min.z() << ',' << o.box_max.x() << ','
+               << o.box_max.y() << ',' << o.box_max.z() << '\n';
     if (!r || !labels_out.isSet()) return;
     if (!labels) {
       labels_sensor = obs.sensorLabel;
@@ -94,6 +125,16 @@ int run(int argc, char** argv) {
     labels->write(r->timestamp_ns, dynobj::core::pixelsOfMask(r->dynamic));
   };
   while (reader.next(e)) {
+    const bool in_range = e.index >= from.getValue() && e.index <= to.getValue();
+    if (!in_range) {  // outside --from/--to: copied unchanged
+      if (e.isPair()) {
+        if (e.actions) arch << *e.actions;
+        arch << *e.sensory_frame;
+      } else {
+        arch << *e.observation;
+      }
+      continue;
+    }
     if (e.isPair()) {
       std::vector<::mrpt::obs::CObservation::Ptr> sf_extra;
       for (auto& o : *e.sensory_frame) onResult(*o, filter.filter(o, &sf_extra));
@@ -114,6 +155,12 @@ int run(int argc, char** argv) {
   }
   file.close();
   if (labels) labels->close();
+  if (tracks_out.isSet()) {
+    tracks.close();
+    if (!tracks) throw std::runtime_error("error writing '" + tracks_partial + "'");
+    fs::rename(tracks_partial, tracks_out.getValue());
+    tracks_cleanup.armed = false;
+  }
   fs::rename(partial, out.getValue());
   cleanup.armed = false;
   if (tty) std::fprintf(stderr, "\n");
