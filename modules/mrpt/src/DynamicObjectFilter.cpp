@@ -58,6 +58,15 @@ const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservatio
                      ? dynamic_cast<mobs::CObservation3DRangeScan*>(obs.get())
                      : nullptr;
 
+  if (scan3d && opts_.mode != FilterMode::Mark &&
+      (scan3d->points3D_isExternallyStored() || scan3d->rangeImage_isExternallyStored())) {
+    // Its points / ranges live in external files, which this filter must not rewrite (and MRPT
+    // 2.5 keeps no pixel indices there): leave it untouched and say so.
+    warn(std::string(toString(opts_.mode)) +
+         ": externally stored CObservation3DRangeScan passed through (run rawlog-edit "
+         "--de-externalize first)");
+    return nullptr;
+  }
   if (opts_.mode == FilterMode::Restore) {
     if (!scan3d) {
       warn("restore: " + cls + " keeps no dropped points; passed through");
