@@ -77,3 +77,12 @@ TEST(TimingStats, MedianAndP99) {
   s.print(out);
   EXPECT_NE(out.str().find("total"), std::string::npos);
 }
+
+TEST(DetectorParams, SensorPresetOverridesOnlyItsKeys) {
+  ::mrpt::config::CConfigFile cfg(std::string(DYNOBJ_SHARE_DIR) + "/config/dynobj-os0-128-2048.ini");
+  DetectorParams p;
+  p.load(cfg);
+  EXPECT_EQ(p.foreground.kernel_half_width, 14);
+  EXPECT_EQ(p.ego_motion.match_window, 128);
+  EXPECT_EQ(p.movement.window, MovementParams{}.window);  // everything else stays the default
+}
