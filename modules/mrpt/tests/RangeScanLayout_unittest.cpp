@@ -4,6 +4,8 @@
 #include <dynobj/mrpt/ObservationConverter.h>
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <gtest/gtest.h>
+
+#include "SerializationRoundTrip.h"
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/serialization/CArchive.h>
@@ -34,14 +36,6 @@ core::LidarFrame randomFrame(unsigned seed, int rows, int cols) {
   return f;
 }
 
-mobs::CObservation3DRangeScan::Ptr serializeRoundTrip(const mobs::CObservation3DRangeScan& o) {
-  ::mrpt::io::CMemoryStream buf;
-  auto out = ::mrpt::serialization::archiveFrom(buf);
-  out << o;
-  buf.Seek(0);
-  auto in = ::mrpt::serialization::archiveFrom(buf);
-  return in.ReadObject<mobs::CObservation3DRangeScan>();
-}
 
 }  // namespace
 
@@ -52,7 +46,7 @@ TEST(RangeScanLayout, RoundTripThroughSerializationKeepsEveryReturn) {
   EXPECT_FLOAT_EQ(obs.rangeUnits, 0.002f);
   EXPECT_FALSE(obs.range_is_depth);
   EXPECT_EQ(obs.points3D_x.size(), a.validCount());
-  auto back = serializeRoundTrip(obs);
+  auto back = dynobj::test::serializeRoundTrip(obs);
   ASSERT_TRUE(back);
   // MRPT 2.5.8 reads other layers with rows/cols swapped: rangeLayer() must undo it.
   const auto layer = dynobj::mrpt::intensityLayer(*back);

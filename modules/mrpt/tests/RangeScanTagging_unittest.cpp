@@ -5,6 +5,8 @@
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <dynobj/mrpt/RangeScanTagging.h>
 #include <gtest/gtest.h>
+
+#include "SerializationRoundTrip.h"
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/TPixelLabelInfo.h>
@@ -61,14 +63,6 @@ std::size_t inserted(const mobs::CObservation3DRangeScan& o) {
   return map.size();
 }
 
-mobs::CObservation3DRangeScan::Ptr roundTrip(const mobs::CObservation3DRangeScan& o) {
-  ::mrpt::io::CMemoryStream buf;
-  auto out = ::mrpt::serialization::archiveFrom(buf);
-  out << o;
-  buf.Seek(0);
-  auto in = ::mrpt::serialization::archiveFrom(buf);
-  return in.ReadObject<mobs::CObservation3DRangeScan>();
-}
 
 }  // namespace
 
@@ -88,7 +82,7 @@ TEST(RangeScanTagging, MarkSetsTheDynamicBitAndKeepsOtherLabels) {
     for (int c = 0; c < 64; c++) set += o.pixelLabels->checkLabel(r, c, 1);
   EXPECT_EQ(set, 13);
   EXPECT_EQ(o.points3D_x.size(), 512u);  // geometry untouched
-  auto back = roundTrip(o);               // labels are serialized
+  auto back = dynobj::test::serializeRoundTrip(o);               // labels are serialized
   EXPECT_TRUE(back->pixelLabels->checkLabel(3, 11, 1));
   // Marking again with another mask moves the bit (no stale labels).
   cv::Mat_<std::uint8_t> other(8, 64, std::uint8_t{0});
@@ -111,7 +105,7 @@ TEST(RangeScanTagging, DropRemovesExactlyTheFlaggedPointsAndRestoreGivesThemBack
   for (std::size_t i = 0; i < o.points3D_x.size(); i++)
     EXPECT_FALSE(someMask()(o.points3D_idxs_y[i], o.points3D_idxs_x[i]));
 
-  auto back = roundTrip(o);  // through serialization (and MRPT 2.5.8's transposed layers)
+  auto back = dynobj::test::serializeRoundTrip(o);  // through serialization (and MRPT 2.5.8's transposed layers)
   const auto rs = dm::restoreDynamic(*back);
   EXPECT_EQ(rs.points_restored, 13u);
   EXPECT_EQ(back->points3D_x.size(), 512u);
