@@ -37,6 +37,8 @@ FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
 
 void FreeSpaceCheck::remember(long index, const LidarFrame& frame) {
   if (!p_.enabled) return;
+  if (!proj_ || proj_->sensor().rows != frame.rows() || proj_->sensor().cols != frame.cols())
+    proj_.emplace(frame.sensor);  // built once, not per candidate
   if (ranges_.size() >= history_) {  // recycle the oldest buffer
     auto oldest = std::move(ranges_.front());
     ranges_.pop_front();
@@ -55,11 +57,11 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const cv::Mat_<float>* old = nullptr;
   for (const auto& [idx, r] : ranges_)
     if (idx == past) old = &r;
-  if (!p_.enabled || !old || !chain.contains(past) || !chain.contains(current) ||
+  if (!p_.enabled || !old || !proj_ || !chain.contains(past) || !chain.contains(current) ||
       old->size() != frame.range.size())
     return e;
   const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
-  const SphericalProjection proj(frame.sensor);
+  const SphericalProjection& proj = *proj_;
   const int W = frame.cols();
   for (int px : cluster.pixels) {
     const cv::Vec3f& p = frame.xyz(px / W, px % W);

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include <deque>
+#include <optional>
 #include <utility>
 
 #include "dynobj/core/Clusterer.h"
@@ -52,6 +53,7 @@ class FreeSpaceCheck {
   FreeSpaceParams p_;
   std::size_t history_;
   std::deque<std::pair<long, cv::Mat_<float>>> ranges_;
+  std::optional<SphericalProjection> proj_;  ///< Eq. (1) for the remembered frames' sensor
 };
 
 }  // namespace dynobj::core
