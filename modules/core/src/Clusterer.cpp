@@ -35,13 +35,14 @@ void ClusteringParams::visit(ParamVisitor& v) {
   v.value("max_points", max_points);
   v.value("max_length", max_length);
   v.value("voxel", voxel);
-  v.value("kdtree", kdtree);
+  v.value("search", search);
   v.value("max_window", max_window);
 }
 
 void ClusteringParams::validate() const {
   requirePositive("horizontal_distance", horizontal_distance);
   requirePositive("vertical_distance", vertical_distance);
+  requireOneOf("search", search, {"grid", "kdtree", "image"});
   requireInRange("min_points", min_points, 1, 1000000);
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("max_window", max_window, 1, 1000);
@@ -89,11 +90,24 @@ Clusterer::Clusterer(const ClusteringParams& p) : p_(p) { p_.validate(); }
 
 namespace {
 
+/// 21 bits per axis of a cell index: keys order cells lexicographically by (x, y, z).
+std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto k = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF; };
+  return (k(x) << 42) | (k(y) << 21) | k(z);
+}
+
+std::int64_t cellOf(float v, double inv) { return static_cast<std::int64_t>(std::floor(v * inv)); }
+
 /// Union-find root with path halving.
 int root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x)
     x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
   return x;
+}
+
+void unite(std::vector<int>& parent, int i, int j) {
+  const int a = root(parent, i), b = root(parent, j);
+  if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
 }
 
 }  // namespace
@@ -110,8 +124,8 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
     if (m[i] && v[i]) pixels_.push_back(i);
   if (pixels_.empty()) return;
   std::vector<int> label;
-  if (p_.kdtree) clusterKdTree(f, label);
-  else clusterImage(f, label);
+  if (p_.search == "image") clusterImage(f, label);
+  else clusterPoints(f, label);
   // Gather the components (labels are union-find roots) and keep those of a plausible size.
   count_.assign(pixels_.size(), 0);
   for (int l : label) count_[static_cast<std::size_t>(l)]++;
@@ -165,10 +179,10 @@ void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
   for (std::size_t i = 0; i < pixels_.size(); i++) label[i] = root(parent, static_cast<int>(i));
 }
 
-void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
+void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
   const int W = f.cols();
   const float zs = static_cast<float>(p_.horizontal_distance / p_.vertical_distance);
-  // With voxel > 0, the tree holds one representative point per voxel (the first feature in
+  // With voxel > 0, the search holds one representative point per voxel (the first feature in
   // it): dense surfaces give many features per voxel, and linking at eps_xy = 0.35 m does not
   // need 10 cm detail. Every feature takes its voxel's cluster.
   std::vector<int> rep_of(pixels_.size());
@@ -178,8 +192,8 @@ void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
     const double inv = 1.0 / p_.voxel;
     for (std::size_t i = 0; i < pixels_.size(); i++) {
       const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
-      const auto k = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)) & 0x1FFFFF; };
-      keys_.emplace_back((k(p[0]) << 42) | (k(p[1]) << 21) | k(p[2]), static_cast<int>(i));
+      keys_.emplace_back(cellKey(cellOf(p[0], inv), cellOf(p[1], inv), cellOf(p[2], inv)),
+                         static_cast<int>(i));
     }
     std::sort(keys_.begin(), keys_.end());
     for (std::size_t j = 0; j < keys_.size(); j++) {
@@ -199,7 +213,8 @@ void Clusterer::clusterKdTree(const LidarFrame& f, std::vector<int>& label) {
   }
   std::vector<int> parent(pts_.size());
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
-  linkKdTree(parent);
+  if (p_.search == "kdtree") linkKdTree(parent);
+  else linkGrid(parent);
   // Labels must be feature indices (roots of the features' own components) for cluster().
   std::vector<int> first_feature(pts_.size(), -1);
   label.resize(pixels_.size());
@@ -228,9 +243,50 @@ void Clusterer::linkKdTree(std::vector<int>& parent) {
       if (j <= i) continue;
       const Eigen::Vector3f& q = pts_[j];
       if (std::hypot(q.x() - p.x(), q.y() - p.y()) > eps || std::abs(q.z() - p.z()) > eps) continue;
-      const int a = root(parent, static_cast<int>(i)), b = root(parent, static_cast<int>(j));
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      unite(parent, static_cast<int>(i), static_cast<int>(j));
     }
+  }
+}
+
+void Clusterer::linkGrid(std::vector<int>& parent) {
+  // Cells of side eps in the scaled space: Eq. (6)-(7) neighbours lie in the same or an adjacent
+  // cell. Sorted by key, a column (x, y, z-1..z+1) is one contiguous run, and the 4 forward
+  // columns' start keys grow with the cell key, so 4 cursors walk the array once: O(n).
+  const float eps = static_cast<float>(p_.horizontal_distance), eps2 = eps * eps;
+  const double inv = 1.0 / eps;
+  cells_.clear();
+  for (std::size_t i = 0; i < pts_.size(); i++)
+    cells_.emplace_back(cellKey(cellOf(pts_[i].x(), inv), cellOf(pts_[i].y(), inv), cellOf(pts_[i].z(), inv)),
+                        static_cast<int>(i));
+  std::sort(cells_.begin(), cells_.end());
+  const auto linkIfNear = [&](int i, int j) {
+    const Eigen::Vector3f& p = pts_[static_cast<std::size_t>(i)];
+    const Eigen::Vector3f& q = pts_[static_cast<std::size_t>(j)];
+    const float dx = q.x() - p.x(), dy = q.y() - p.y();
+    if (dx * dx + dy * dy <= eps2 && std::abs(q.z() - p.z()) <= eps) unite(parent, i, j);
+  };
+  constexpr std::uint64_t X = std::uint64_t{1} << 42, Y = std::uint64_t{1} << 21;
+  // Forward columns (dx, dy) in {(0,1), (1,-1), (1,0), (1,1)}, each spanning dz = -1..+1.
+  const std::uint64_t offset[4] = {Y, X - Y, X, X + Y};
+  std::size_t cursor[4] = {0, 0, 0, 0};
+  const std::size_t n = cells_.size();
+  for (std::size_t s = 0; s < n;) {
+    const std::uint64_t key = cells_[s].first;
+    std::size_t e = s;
+    while (e < n && cells_[e].first == key) e++;
+    for (std::size_t a = s; a < e; a++) {
+      for (std::size_t b = a + 1; b < e; b++) linkIfNear(cells_[a].second, cells_[b].second);  // same cell
+      for (std::size_t b = e; b < n && cells_[b].first == key + 1; b++)  // (0, 0, +1)
+        linkIfNear(cells_[a].second, cells_[b].second);
+    }
+    for (int k = 0; k < 4; k++) {
+      const std::uint64_t lo = key + offset[k] - 1, hi = key + offset[k] + 1;
+      std::size_t& c = cursor[k];
+      while (c < n && cells_[c].first < lo) c++;
+      for (std::size_t b = c; b < n && cells_[b].first <= hi; b++)
+        for (std::size_t a = s; a < e; a++) linkIfNear(cells_[a].second, cells_[b].second);
+    }
+    s = e;
   }
 }
 

@@ -68,6 +68,14 @@ void requireInRange(const std::string& key, double value, double lo, double hi) 
   }
 }
 
+void requireOneOf(const std::string& key, const std::string& value,
+                  const std::vector<std::string>& choices) {
+  if (std::find(choices.begin(), choices.end(), value) != choices.end()) return;
+  std::string list;
+  for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
+  throwParameterError(key, "'" + value + "' is not one of: " + list);
+}
+
 void requirePositive(const std::string& key, double value) {
   if (!(value > 0)) {
     std::ostringstream ss;

@@ -14,6 +14,7 @@ class Reader : public ParamVisitor {
   void value(const char* key, double& v) override { v = readDouble(c_, s_, key, v); }
   void value(const char* key, int& v) override { v = readInt(c_, s_, key, v); }
   void value(const char* key, bool& v) override { v = readBool(c_, s_, key, v); }
+  void value(const char* key, std::string& v) override { v = readString(c_, s_, key, v); }
   void degrees(const char* key, double& v) override { v = readDegrees(c_, s_, key, v); }
 
  private:
@@ -27,6 +28,7 @@ class Writer : public ParamVisitor {
   void value(const char* key, double& v) override { c_.write(s_, key, v); }
   void value(const char* key, int& v) override { c_.write(s_, key, v); }
   void value(const char* key, bool& v) override { c_.write(s_, key, v); }
+  void value(const char* key, std::string& v) override { c_.write(s_, key, v); }
   void degrees(const char* key, double& v) override { c_.write(s_, key, v * 180.0 / M_PI); }
 
  private:

@@ -2,7 +2,12 @@
 #include <dynobj/core/Clusterer.h>
 #include <gtest/gtest.h>
 
+#include <dynobj/core/Config.h>
+
+#include <functional>
+#include <map>
 #include <random>
+#include <set>
 
 #include "SyntheticScene.h"
 
@@ -31,13 +36,13 @@ TEST(Clusterer, TwoGroupsOneMetreApartGiveTwoClusters) {
                                     {8, 21, 5, 1.1f, 0},
                                     {9, 20, 5, 1.0f, -0.1f}});
   cv::Mat_<std::uint8_t> features = f.valid.clone();
-  for (bool kd : {true, false}) {
+  for (const char* search : {"grid", "kdtree", "image"}) {
     ClusteringParams p;
-    p.kdtree = kd;
+    p.search = search;
     p.min_points = 2;
     std::vector<Cluster> out;
     Clusterer(p).cluster(f, features, out);
-    ASSERT_EQ(out.size(), 2u) << (kd ? "kdtree" : "image");
+    ASSERT_EQ(out.size(), 2u) << search;
     EXPECT_EQ(out[0].pixels.size(), 3u);
     EXPECT_NEAR(std::min(out[0].centroid.y(), out[1].centroid.y()), 0.1 / 3, 1e-5);
     EXPECT_NEAR(std::max(out[0].centroid.y(), out[1].centroid.y()), 1.0 + 0.1 / 3, 1e-5);
@@ -68,8 +73,8 @@ TEST(Clusterer, ImageWindowEqualsKdTreeOnASparseScene) {
     for (int c = 0; c < f.cols(); c++)
       if (f.isValid(r, c) && f.range(r, c) < 11.0f && f.xyz(r, c)[2] > -0.99f) features(r, c) = 255;
   ClusteringParams a, b;
-  a.kdtree = true;
-  b.kdtree = false;
+  a.search = "kdtree";
+  b.search = "image";
   b.max_window = 64;
   a.min_points = b.min_points = 1;
   std::vector<Cluster> ca, cb;
@@ -84,6 +89,56 @@ TEST(Clusterer, ImageWindowEqualsKdTreeOnASparseScene) {
   };
   EXPECT_EQ(sizes(ca), sizes(cb));
   EXPECT_EQ(ca.size(), 3u);  // the two close posts merge (0.5 m apart, edges 0.2 m)
+}
+
+TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
+  // Oracle: single linkage under Eq. (6)-(7) by brute force (all pairs), on random points with
+  // distances around both thresholds; every feature is its own voxel (voxel = 0).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> xy(-2.f, 2.f), z(-1.5f, 1.5f);
+  for (int trial = 0; trial < 20; trial++) {
+    std::vector<std::array<float, 5>> pts;
+    const int n = 50 + 30 * trial;
+    for (int i = 0; i < n; i++) pts.push_back({static_cast<float>(i / 64), static_cast<float>(i % 64), xy(rng), xy(rng), z(rng)});
+    const LidarFrame f = pointsFrame(pts);
+    ClusteringParams p;
+    p.voxel = 0;
+    p.min_points = 1;
+    p.max_points = 100000;
+    p.max_length = 0;
+    std::vector<int> parent(pts.size());
+    for (int i = 0; i < n; i++) parent[i] = i;
+    const std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+    for (int i = 0; i < n; i++)
+      for (int j = i + 1; j < n; j++)
+        if (std::hypot(pts[i][2] - pts[j][2], pts[i][3] - pts[j][3]) <= p.horizontal_distance &&
+            std::abs(pts[i][4] - pts[j][4]) <= p.vertical_distance)
+          parent[find(i)] = find(j);
+    std::set<std::set<int>> expected;
+    std::map<int, std::set<int>> groups;
+    for (int i = 0; i < n; i++) groups[find(i)].insert(static_cast<int>(pts[i][0]) * 64 + static_cast<int>(pts[i][1]));
+    for (auto& [root, g] : groups) expected.insert(g);
+    for (const char* search : {"grid", "kdtree"}) {
+      p.search = search;
+      std::vector<Cluster> out;
+      Clusterer(p).cluster(f, f.valid, out);
+      std::set<std::set<int>> got;
+      for (const Cluster& c : out) got.insert(std::set<int>(c.pixels.begin(), c.pixels.end()));
+      EXPECT_EQ(got, expected) << search << ", trial " << trial << ", " << expected.size() << " clusters";
+    }
+  }
+}
+
+TEST(Clusterer, UnknownSearchIsAnErrorNamingTheKey) {
+  ClusteringParams p;
+  p.search = "octree";
+  try {
+    p.validate();
+    FAIL() << "no error";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("search"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("grid, kdtree, image"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Clusterer, PcaOfAWall) {

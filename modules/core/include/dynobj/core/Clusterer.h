@@ -2,14 +2,15 @@
 // Paper III-B-2, Eq. (6)-(7): Euclidean clustering of the foreground points with separate
 // horizontal (d_xy) and vertical (d_z) thresholds: two points are neighbours when
 // d_xy <= horizontal_distance and d_z <= vertical_distance; clusters are the connected components
-// (single linkage, the usual reading of Eq. 7). Neighbours are found either in the range image
-// around each pixel (default: the window spans epsilon at the pixel's range, O(n)) or with a
-// nanoflann KD-tree (exact for any spacing; slower on dense features).
+// (single linkage, the usual reading of Eq. 7). Neighbours are found (`search`) in a uniform grid
+// of epsilon-sized cells (default, O(n)), with a nanoflann KD-tree (same links, slower; kept as the
+// oracle) or in the range image around each pixel (the window spans epsilon at the pixel's range).
 #pragma once
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include <string>
 #include <vector>
 
 #include "dynobj/core/LidarFrame.h"
@@ -23,8 +24,8 @@ struct ClusteringParams : public StageParams {
   int min_points = 4;                 ///< smaller clusters are dropped
   int max_points = 3000;              ///< larger clusters are dropped (walls, shelves, the floor)
   double max_length = 6.0;            ///< [m] longer clusters are dropped too (0 = no limit): cars fit
-  bool kdtree = true;                 ///< KD-tree search (false: range-image window search)
-  double voxel = 0.17;                ///< [m] KD-tree on one point per voxel of this size (0 = all)
+  std::string search = "grid";        ///< neighbour search: grid | kdtree | image
+  double voxel = 0.17;                ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
   int max_window = 16;                ///< image search: at most this many columns each side
 
   void visit(ParamVisitor& v) override;
@@ -53,13 +54,16 @@ class Clusterer {
  private:
   void clusterImage(const LidarFrame& frame, std::vector<int>& label);
   void clusterKdTree(const LidarFrame& frame, std::vector<int>& label);
+  void clusterPoints(const LidarFrame& frame, std::vector<int>& label);  ///< grid or kdtree
   void linkKdTree(std::vector<int>& parent);  ///< union-find over pts_
+  void linkGrid(std::vector<int>& parent);    ///< the same links, from a cell grid
 
   ClusteringParams p_;
   std::vector<int> pixels_;
   cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
   std::vector<int> count_, slot_;
-  std::vector<std::pair<std::uint64_t, int>> keys_;  ///< voxel key, feature index
+  std::vector<std::pair<std::uint64_t, int>> keys_;   ///< voxel key, feature index
+  std::vector<std::pair<std::uint64_t, int>> cells_;  ///< grid cell key, index in pts_
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
 

@@ -25,6 +25,10 @@ void requireInRange(const std::string& key, double value, double lo, double hi);
 /// Throws ParameterError unless value > 0.
 void requirePositive(const std::string& key, double value);
 
+/// Throws ParameterError unless `value` is one of `choices` (the message lists them).
+void requireOneOf(const std::string& key, const std::string& value,
+                  const std::vector<std::string>& choices);
+
 // Readers. A missing key returns `def`, or throws when `required`. A present key whose value does
 // not parse completely (e.g. "12abc", "yes please") throws a ParameterError naming it.
 double readDouble(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,

@@ -17,6 +17,7 @@ class ParamVisitor {
   virtual void value(const char* key, double& v) = 0;
   virtual void value(const char* key, int& v) = 0;
   virtual void value(const char* key, bool& v) = 0;
+  virtual void value(const char* key, std::string& v) = 0;
   /// An angle: radians in memory, degrees in the INI file.
   virtual void degrees(const char* key, double& v) = 0;
 };
