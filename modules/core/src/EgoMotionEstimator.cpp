@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "dynobj/core/Config.h"
 
@@ -28,6 +29,23 @@ Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
   return T;
 }
 
+/// Hamming distance of two 32-byte ORB descriptors, inline: cv::hal::normHamming is an
+/// out-of-line dispatched call, slow on the ~90,000 short pairs a frame compares. GCC builds a
+/// POPCNT clone (every x86-64 CPU since 2008) and picks it at load time.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("popcnt", "default")))
+#endif
+int hamming256(const std::uint8_t* a, const std::uint8_t* b) {
+  int d = 0;
+  for (int k = 0; k < 32; k += 8) {
+    std::uint64_t x, y;
+    std::memcpy(&x, a + k, 8);
+    std::memcpy(&y, b + k, 8);
+    d += __builtin_popcountll(x ^ y);
+  }
+  return d;
+}
+
 }  // namespace
 
 void EgoMotionParams::visit(ParamVisitor& v) {
@@ -42,6 +60,8 @@ void EgoMotionParams::visit(ParamVisitor& v) {
   v.value("inlier_distance", inlier_distance);
   v.value("inlier_range_factor", inlier_range_factor);
   v.value("iterations", iterations);
+  v.value("confidence", confidence);
+  v.value("refinements", refinements);
   v.value("min_inliers", min_inliers);
   v.value("min_inlier_ratio", min_inlier_ratio);
   v.value("seed", seed);
@@ -59,6 +79,8 @@ void EgoMotionParams::validate() const {
   requirePositive("inlier_distance", inlier_distance);
   requireInRange("inlier_range_factor", inlier_range_factor, 0, 1);
   requireInRange("iterations", iterations, 1, 100000);
+  requireInRange("confidence", confidence, 0.5, 1);
+  requireInRange("refinements", refinements, 0, 100);
   requireInRange("min_inliers", min_inliers, 3, 100000);
   requireInRange("min_inlier_ratio", min_inlier_ratio, 0, 1);
 }
@@ -161,7 +183,8 @@ void EgoMotionEstimator::match(int cols, int window, std::vector<std::pair<int, 
     const int span = std::min(nb, 2 * reach + 1);  // distinct buckets, even when they wrap
     for (int k = 0; k < span; k++) {
       for (int j : buckets_[static_cast<std::size_t>(((b0 - reach + k) % nb + nb) % nb)]) {
-        const int d = cv::hal::normHamming(a, prev_.descriptors.ptr<std::uint8_t>(j), bytes);
+        const std::uint8_t* b = prev_.descriptors.ptr<std::uint8_t>(j);
+        const int d = bytes == 32 ? hamming256(a, b) : cv::hal::normHamming(a, b, bytes);
         if (d < d1) {
           d2 = d1;
           d1 = d;
@@ -203,7 +226,8 @@ void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, Eg
     return k;
   };
   std::vector<Eigen::Vector3d> s3(3), d3(3);
-  for (int it = 0; it < p_.iterations; it++) {
+  int needed = p_.iterations;  // shrinks as the best inlier ratio w grows (adaptive RANSAC)
+  for (int it = 0; it < needed; it++) {
     const int i0 = pick(rng_), i1 = pick(rng_), i2 = pick(rng_);
     if (i0 == i1 || i1 == i2 || i0 == i2) continue;
     s3 = {src[static_cast<std::size_t>(i0)], src[static_cast<std::size_t>(i1)], src[static_cast<std::size_t>(i2)]};
@@ -213,17 +237,28 @@ void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, Eg
     if (k > best) {
       best = k;
       best_in = in;
+      const double w3 = std::pow(static_cast<double>(k) / n, 3);  // P(a sample is all inliers)
+      if (p_.confidence < 1 && w3 > 0 && w3 < 1)
+        needed = std::min(needed, static_cast<int>(std::ceil(std::log(1 - p_.confidence) / std::log(1 - w3))));
     }
   }
   if (best < 3) return;
+  // Least squares on the inliers, re-selecting them with the refined motion until they settle
+  // (at most `refinements` times): a sample's inlier set is only as good as its 3 points.
   std::vector<Eigen::Vector3d> si, di;
-  for (int i = 0; i < n; i++)
-    if (best_in[static_cast<std::size_t>(i)]) {
-      si.push_back(src[static_cast<std::size_t>(i)]);
-      di.push_back(dst[static_cast<std::size_t>(i)]);
-    }
-  em.motion = rigidFit(si, di);
-  em.inliers = countInliers(em.motion, in);
+  for (int pass = 0; pass <= p_.refinements; pass++) {
+    si.clear();
+    di.clear();
+    for (int i = 0; i < n; i++)
+      if (best_in[static_cast<std::size_t>(i)]) {
+        si.push_back(src[static_cast<std::size_t>(i)]);
+        di.push_back(dst[static_cast<std::size_t>(i)]);
+      }
+    em.motion = rigidFit(si, di);
+    em.inliers = countInliers(em.motion, in);
+    if (in == best_in) break;
+    best_in = in;
+  }
   em.ok = em.inliers >= p_.min_inliers && em.inliers >= p_.min_inlier_ratio * n;
   em.source = "intensity";
 }

@@ -41,24 +41,31 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
   const double z_ground = zs_[k];
   const double tan_slope = std::tan(p_.max_slope);
 
-  for (int c = 0; c < W; c++) {
-    // Bottom-up: the first return near the ground height starts the column's ground chain; each
-    // next return is ground when it continues the chain (small step, or a gentle slope away from
-    // the sensor). Objects break the chain only locally: the floor seen behind a person is ground.
-    bool have_last = false;
-    double lxy = 0, lz = 0;
-    for (int r = H - 1; r >= 0; r--) {
-      if (!f.isValid(r, c)) continue;
-      const cv::Vec3f& p = f.xyz(r, c);
-      const double xy = std::hypot(p[0], p[1]);
+  // Bottom-up, one column at a time (walked row by row, for the cache): the first return near the
+  // ground height starts the column's ground chain; each next return is ground when it continues
+  // the chain (small step, or a gentle slope away from the sensor). Objects break the chain only
+  // locally: the floor seen behind a person is ground.
+  have_last_.assign(static_cast<std::size_t>(W), 0);
+  last_xy_.resize(static_cast<std::size_t>(W));
+  last_z_.resize(static_cast<std::size_t>(W));
+  const auto horizontal = [](const cv::Vec3f& p) { return std::sqrt(p[0] * p[0] + p[1] * p[1]); };
+  for (int r = H - 1; r >= 0; r--) {
+    const std::uint8_t* valid = f.valid.ptr<std::uint8_t>(r);
+    const cv::Vec3f* xyz = f.xyz.ptr<cv::Vec3f>(r);
+    std::uint8_t* out = ground.ptr<std::uint8_t>(r);
+    for (int c = 0; c < W; c++) {
+      if (!valid[c]) continue;
+      const cv::Vec3f& p = xyz[c];
+      const double xy = horizontal(p);
+      const auto cs = static_cast<std::size_t>(c);
       bool is_ground = false;
-      if (!have_last) {
+      if (!have_last_[cs]) {
         is_ground = std::abs(p[2] - z_ground) <= p_.height_tolerance;
       } else {
         // The chain must move away from the sensor: a rise of at most max_slope over the
         // horizontal progress, plus a quarter of max_step for range noise. (A vertical surface
         // seen at close range, rows a few cm apart, must not climb as "small steps".)
-        const double dxy = xy - lxy, dz = std::abs(p[2] - lz);
+        const double dxy = xy - last_xy_[cs], dz = std::abs(p[2] - last_z_[cs]);
         is_ground = dxy > -0.25 * p_.max_step && dz <= tan_slope * std::max(dxy, 0.0) + 0.25 * p_.max_step;
       }
       if (!is_ground) continue;
@@ -68,14 +75,14 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
       while (ra >= 0 && !f.isValid(ra, c)) ra--;
       if (ra >= 0) {
         const cv::Vec3f& q = f.xyz(ra, c);
-        if (std::abs(std::hypot(q[0], q[1]) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step &&
+        if (std::abs(horizontal(q) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step &&
             p[2] - z_ground > p_.max_step / 2)
           continue;
       }
-      ground(r, c) = 255;
-      lxy = xy;
-      lz = p[2];
-      have_last = true;
+      out[c] = 255;
+      last_xy_[cs] = xy;
+      last_z_[cs] = p[2];
+      have_last_[cs] = 1;
     }
   }
   return z_ground;

@@ -31,7 +31,10 @@ struct EgoMotionParams : public StageParams {
   int border = 2;                   ///< [px] no keypoint this close to a no-return pixel
   double inlier_distance = 0.10;    ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
-  int iterations = 200;             ///< RANSAC iterations
+  int iterations = 200;             ///< RANSAC iterations at most ...
+  double confidence = 0.9999;       ///< ... fewer once an all-inlier sample was drawn with this
+                                    ///< probability (1 = always all)
+  int refinements = 3;              ///< least-squares refits, inliers re-selected each time
   int min_inliers = 25;             ///< fewer -> ego-motion failed
   double min_inlier_ratio = 0.3;    ///< inliers / matches below this -> failed
   int seed = 1;                     ///< RANSAC random seed

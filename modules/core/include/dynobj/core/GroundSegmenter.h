@@ -30,6 +30,8 @@ class GroundSegmenter {
  private:
   GroundParams p_;
   std::vector<float> zs_;
+  std::vector<std::uint8_t> have_last_;  ///< per column: the ground chain has started
+  std::vector<double> last_xy_, last_z_;  ///< per column: its last ground return
 };
 
 }  // namespace dynobj::core
