@@ -98,6 +98,8 @@ std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
 
 std::int64_t cellOf(float v, double inv) { return static_cast<std::int64_t>(std::floor(v * inv)); }
 
+constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};  ///< cellKey() never makes it (63 bits)
+
 /// Union-find root with path halving.
 int root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x)
@@ -123,7 +125,7 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   for (int i = 0; i < n_px; i++)
     if (m[i] && v[i]) pixels_.push_back(i);
   if (pixels_.empty()) return;
-  std::vector<int> label;
+  std::vector<int>& label = label_;
   if (p_.search == "image") clusterImage(f, label);
   else clusterPoints(f, label);
   // Gather the components (labels are union-find roots) and keep those of a plausible size.
@@ -152,7 +154,8 @@ void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
   index_.setTo(-1);
   for (std::size_t i = 0; i < pixels_.size(); i++)
     index_(pixels_[i] / W, pixels_[i] % W) = static_cast<int>(i);
-  std::vector<int> parent(pixels_.size());
+  std::vector<int>& parent = parent_;
+  parent.resize(pixels_.size());
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
   const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
   const double exy = p_.horizontal_distance, ez = p_.vertical_distance;
@@ -185,24 +188,28 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
   // With voxel > 0, the search holds one representative point per voxel (the first feature in
   // it): dense surfaces give many features per voxel, and linking at eps_xy = 0.35 m does not
   // need 10 cm detail. Every feature takes its voxel's cluster.
-  std::vector<int> rep_of(pixels_.size());
+  std::vector<int>& rep_of = rep_of_;
+  rep_of.resize(pixels_.size());
   pts_.clear();
   if (p_.voxel > 0) {
-    keys_.clear();
+    // Voxel -> representative through an open-addressing hash table (no sort: O(n)).
+    std::size_t cap = 64;
+    while (cap < 2 * pixels_.size()) cap *= 2;
+    const int shift = 64 - static_cast<int>(std::log2(static_cast<double>(cap)));
+    slot_key_.assign(cap, kEmptySlot);
+    slot_rep_.resize(cap);
     const double inv = 1.0 / p_.voxel;
     for (std::size_t i = 0; i < pixels_.size(); i++) {
       const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
-      keys_.emplace_back(cellKey(cellOf(p[0], inv), cellOf(p[1], inv), cellOf(p[2], inv)),
-                         static_cast<int>(i));
-    }
-    std::sort(keys_.begin(), keys_.end());
-    for (std::size_t j = 0; j < keys_.size(); j++) {
-      if (j == 0 || keys_[j].first != keys_[j - 1].first) {
-        const cv::Vec3f& p = f.xyz(pixels_[static_cast<std::size_t>(keys_[j].second)] / W,
-                                   pixels_[static_cast<std::size_t>(keys_[j].second)] % W);
+      const std::uint64_t key = cellKey(cellOf(p[0], inv), cellOf(p[1], inv), cellOf(p[2], inv));
+      std::size_t h = (key * 0x9E3779B97F4A7C15ull) >> shift;
+      while (slot_key_[h] != kEmptySlot && slot_key_[h] != key) h = (h + 1) & (cap - 1);
+      if (slot_key_[h] == kEmptySlot) {  // first feature of its voxel: the representative
+        slot_key_[h] = key;
+        slot_rep_[h] = static_cast<int>(pts_.size());
         pts_.emplace_back(p[0], p[1], p[2] * zs);
       }
-      rep_of[static_cast<std::size_t>(keys_[j].second)] = static_cast<int>(pts_.size()) - 1;
+      rep_of[i] = slot_rep_[h];
     }
   } else {
     for (std::size_t i = 0; i < pixels_.size(); i++) {
@@ -211,12 +218,14 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
       rep_of[i] = static_cast<int>(i);
     }
   }
-  std::vector<int> parent(pts_.size());
+  std::vector<int>& parent = parent_;
+  parent.resize(pts_.size());
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
   if (p_.search == "kdtree") linkKdTree(parent);
   else linkGrid(parent);
   // Labels must be feature indices (roots of the features' own components) for cluster().
-  std::vector<int> first_feature(pts_.size(), -1);
+  std::vector<int>& first_feature = first_feature_;
+  first_feature.assign(pts_.size(), -1);
   label.resize(pixels_.size());
   for (std::size_t i = 0; i < pixels_.size(); i++) {
     const auto r = static_cast<std::size_t>(root(parent, rep_of[i]));

@@ -62,7 +62,9 @@ class Clusterer {
   std::vector<int> pixels_;
   cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
   std::vector<int> count_, slot_;
-  std::vector<std::pair<std::uint64_t, int>> keys_;   ///< voxel key, feature index
+  std::vector<int> label_, parent_, rep_of_, first_feature_;  ///< per-frame scratch, kept
+  std::vector<std::uint64_t> slot_key_;  ///< voxel hash table: key of each slot ...
+  std::vector<int> slot_rep_;             ///< ... and its representative (index in pts_)
   std::vector<std::pair<std::uint64_t, int>> cells_;  ///< grid cell key, index in pts_
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
