@@ -22,10 +22,13 @@ LabelFile LabelFile::read(const std::string& path) {
   if (!std::getline(in, text)) bad(path, 1, "empty file (expected '# dynobj-labels v1 ...')");
   {
     char tail = 0;
-    if (std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c", &f.rows, &f.cols,
-                    &tail) != 2 ||
-        f.rows <= 0 || f.cols <= 0)
-      bad(path, 1, "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>')");
+    f.instances = text.rfind("# dynobj-instances ", 0) == 0;
+    const int got = f.instances
+                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%d cols=%d %c", &f.rows, &f.cols, &tail)
+                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c", &f.rows, &f.cols, &tail);
+    if (got != 2 || f.rows <= 0 || f.cols <= 0)
+      bad(path, 1, "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
+                       " or '# dynobj-instances v1 rows=<H> cols=<W>')");
   }
   const std::uint64_t n_pixels = static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
   while (std::getline(in, text)) {
@@ -40,13 +43,18 @@ LabelFile LabelFile::read(const std::string& path) {
       bad(path, line_no, "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
     s.pixels.reserve(static_cast<std::size_t>(count));
     long long idx = 0;
+    char colon = 0;
+    std::int32_t id = 0;
     while (ss >> idx) {
+      if (f.instances && !(ss >> colon >> id && colon == ':'))
+        bad(path, line_no, "expected '<idx>:<id>' at pixel " + std::to_string(idx));
       if (idx < 0 || static_cast<std::uint64_t>(idx) >= n_pixels)
         bad(path, line_no, "index " + std::to_string(idx) + " is outside the " +
                                std::to_string(f.rows) + "x" + std::to_string(f.cols) + " image");
       if (!s.pixels.empty() && static_cast<std::uint32_t>(idx) <= s.pixels.back())
         bad(path, line_no, "indices are not strictly ascending at " + std::to_string(idx));
       s.pixels.push_back(static_cast<std::uint32_t>(idx));
+      if (f.instances) s.ids.push_back(id);
     }
     if (!ss.eof()) bad(path, line_no, "non-numeric token");
     if (static_cast<long long>(s.pixels.size()) != count)
@@ -67,12 +75,13 @@ std::vector<std::uint32_t> pixelsOfMask(const cv::Mat_<std::uint8_t>& mask) {
   return out;
 }
 
-LabelFileWriter::LabelFileWriter(const std::string& path, int rows, int cols)
-    : path_(path), partial_(path + ".partial"), rows_(rows), cols_(cols) {
+LabelFileWriter::LabelFileWriter(const std::string& path, int rows, int cols, bool instances)
+    : path_(path), partial_(path + ".partial"), rows_(rows), cols_(cols), instances_(instances) {
   if (rows <= 0 || cols <= 0) throw std::invalid_argument("LabelFileWriter: bad image size");
   out_.open(partial_, std::ios::trunc);
   if (!out_) throw std::runtime_error("cannot write label file '" + partial_ + "'");
-  out_ << "# dynobj-labels v1 rows=" << rows << " cols=" << cols << "\n";
+  out_ << (instances ? "# dynobj-instances v1 rows=" : "# dynobj-labels v1 rows=") << rows
+       << " cols=" << cols << "\n";
 }
 
 LabelFileWriter::~LabelFileWriter() {
@@ -82,15 +91,19 @@ LabelFileWriter::~LabelFileWriter() {
   }
 }
 
-void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels) {
+void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels,
+                            const std::vector<std::int32_t>& ids) {
   if (any_ && timestamp_ns <= last_ts_)
     throw std::invalid_argument("LabelFileWriter: timestamps must increase");
+  if (ids.size() != (instances_ ? pixels.size() : 0))
+    throw std::invalid_argument("LabelFileWriter: an instance file needs one id per pixel, a label file none");
   const auto n = static_cast<std::uint64_t>(rows_) * static_cast<std::uint64_t>(cols_);
   out_ << timestamp_ns << ' ' << pixels.size();
   for (std::size_t i = 0; i < pixels.size(); i++) {
     if (pixels[i] >= n || (i > 0 && pixels[i] <= pixels[i - 1]))
       throw std::invalid_argument("LabelFileWriter: pixels must be ascending and inside the image");
     out_ << ' ' << pixels[i];
+    if (instances_) out_ << ':' << ids[i];
   }
   out_ << '\n';
   any_ = true;

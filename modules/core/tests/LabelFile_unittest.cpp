@@ -78,3 +78,25 @@ TEST(LabelFile, PixelsOfMaskAscending) {
   m(0, 2) = 255;
   EXPECT_EQ(pixelsOfMask(m), (std::vector<std::uint32_t>{2, 3}));
 }
+
+TEST(LabelFile, InstanceFileRoundTripAndErrors) {
+  const auto path = temp(".instances");
+  {
+    LabelFileWriter w(path, 4, 8, true);
+    w.write(100, {});
+    w.write(200, {3, 9}, {7, 2});
+    EXPECT_THROW(w.write(300, {1}), std::invalid_argument);  // an id per pixel is required
+    w.close();
+  }
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "# dynobj-instances v1 rows=4 cols=8\n100 0\n200 2 3:7 9:2\n");
+  const LabelFile f = LabelFile::read(path);
+  EXPECT_TRUE(f.instances);
+  ASSERT_EQ(f.sweeps.size(), 2u);
+  EXPECT_EQ(f.sweeps[1].pixels, (std::vector<std::uint32_t>{3, 9}));
+  EXPECT_EQ(f.sweeps[1].ids, (std::vector<std::int32_t>{7, 2}));
+  EXPECT_NE(errorOf("# dynobj-instances v1 rows=4 cols=8\n100 1 3\n").find(":2: expected '<idx>:<id>' at pixel 3"),
+            std::string::npos);
+  EXPECT_TRUE(LabelFile::read(writeText("# dynobj-labels v1 rows=4 cols=8\n100 1 3\n")).sweeps[0].ids.empty());
+}

@@ -7,11 +7,17 @@ using eval::SequenceMetrics;
 
 namespace {
 
-core::LabelFile file(std::vector<core::LabelSweep> sweeps, int rows = 4, int cols = 8) {
+using Sweeps = std::vector<std::pair<std::int64_t, std::vector<std::uint32_t>>>;
+
+core::LabelFile file(const Sweeps& sweeps, int rows = 4, int cols = 8) {
   core::LabelFile f;
   f.rows = rows;
   f.cols = cols;
-  f.sweeps = std::move(sweeps);
+  for (const auto& [t, pixels] : sweeps) {
+    f.sweeps.emplace_back();
+    f.sweeps.back().timestamp_ns = t;
+    f.sweeps.back().pixels = pixels;
+  }
   return f;
 }
 

@@ -39,6 +39,7 @@ SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scena
   if (!rawlog_->open(partial(rawlogPath())))
     throw std::runtime_error("cannot write '" + partial(rawlogPath()) + "'");
   labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
+  instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows, s_.sensor.cols, true);
   tum_.open(partial(tumPath()));
   objects_.open(partial(objectsPath()));
   if (!tum_ || !objects_) throw std::runtime_error("cannot write into '" + out_dir + "'");
@@ -50,6 +51,7 @@ SequenceWriter::~SequenceWriter() {
   if (closed_) return;
   rawlog_.reset();
   labels_.reset();  // removes its own partial file
+  instances_.reset();
   tum_.close();
   objects_.close();
   for (const auto& p : {rawlogPath(), tumPath(), objectsPath()}) std::remove(partial(p).c_str());
@@ -86,6 +88,14 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
   arch << scan;
 
   labels_->write(sw.timestamp_ns, core::pixelsOfMask(sw.dynamic));
+  std::vector<std::uint32_t> pixels;  // every pixel that hit an actor, moving or not
+  std::vector<std::int32_t> ids;
+  for (int i = 0; i < sw.actor.rows * sw.actor.cols; i++)
+    if (sw.actor(i / sw.actor.cols, i % sw.actor.cols) >= 0) {
+      pixels.push_back(static_cast<std::uint32_t>(i));
+      ids.push_back(sw.actor(i / sw.actor.cols, i % sw.actor.cols));
+    }
+  instances_->write(sw.timestamp_ns, pixels, ids);
 
   const Eigen::Quaterniond q(sw.sensor_pose.linear());
   const Eigen::Vector3d& p = sw.sensor_pose.translation();
@@ -104,6 +114,7 @@ void SequenceWriter::close() {
   rawlog_->close();
   rawlog_.reset();
   labels_->close();
+  instances_->close();
   tum_.close();
   objects_.close();
   if (!tum_ || !objects_) throw std::runtime_error("error writing '" + base_ + ".gt.*'");

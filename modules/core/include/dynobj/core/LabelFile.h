@@ -3,7 +3,8 @@
 //   line 1:  # dynobj-labels v1 rows=<H> cols=<W>
 //   then one line per sweep, in time order:  <timestamp_ns> <count> <idx> <idx> ...
 //   with idx = row * W + col, strictly ascending; a sweep with no dynamic pixel has count 0.
-// Ground truth (dynobj-sim) and detector output use the same format.
+// Ground truth (dynobj-sim) and detector output use the same format. Its instance variant
+// (`# dynobj-instances v1 ...`, entries `<idx>:<object id>`) says which object each pixel hit.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -25,10 +26,12 @@ class LabelFileError : public std::runtime_error {
 struct LabelSweep {
   std::int64_t timestamp_ns = 0;
   std::vector<std::uint32_t> pixels;  ///< row * cols + col, ascending
+  std::vector<std::int32_t> ids;      ///< instance files only: the object of each pixel
 };
 
 struct LabelFile {
   int rows = 0, cols = 0;
+  bool instances = false;  ///< an instance file (every pixel carries an object id)
   std::vector<LabelSweep> sweeps;
 
   /// Reads and checks a whole file (header, counts, index range, ascending order, increasing
@@ -43,19 +46,22 @@ std::vector<std::uint32_t> pixelsOfMask(const cv::Mat_<std::uint8_t>& mask);
 /// is always complete. Destroying an unclosed writer removes the partial file.
 class LabelFileWriter {
  public:
-  LabelFileWriter(const std::string& path, int rows, int cols);
+  /// `instances`: write the instance variant (write() then takes one id per pixel).
+  LabelFileWriter(const std::string& path, int rows, int cols, bool instances = false);
   ~LabelFileWriter();
   LabelFileWriter(const LabelFileWriter&) = delete;
   LabelFileWriter& operator=(const LabelFileWriter&) = delete;
 
   /// Appends one sweep; `pixels` must be ascending and inside the image, timestamps increasing.
-  void write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels);
+  void write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels,
+             const std::vector<std::int32_t>& ids = {});
   /// Flushes, checks and renames into place. Throws std::runtime_error on an I/O failure.
   void close();
 
  private:
   std::string path_, partial_;
   int rows_, cols_;
+  bool instances_;
   std::ofstream out_;
   bool closed_ = false;
   bool any_ = false;

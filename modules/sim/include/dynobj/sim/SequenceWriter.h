@@ -37,6 +37,7 @@ class SequenceWriter {
   /// Final paths.
   std::string rawlogPath() const { return base_ + ".rawlog"; }
   std::string labelsPath() const { return base_ + ".gt.labels"; }
+  std::string instancesPath() const { return base_ + ".gt.instances"; }
   std::string tumPath() const { return base_ + ".gt.tum"; }
   std::string objectsPath() const { return base_ + ".gt.objects.csv"; }
 
@@ -44,7 +45,7 @@ class SequenceWriter {
   const Scenario& s_;
   std::string base_;
   std::unique_ptr<::mrpt::io::CFileGZOutputStream> rawlog_;
-  std::unique_ptr<core::LabelFileWriter> labels_;
+  std::unique_ptr<core::LabelFileWriter> labels_, instances_;
   std::ofstream tum_, objects_;
   bool closed_ = false;
   std::mt19937 odo_rng_;
