@@ -19,9 +19,15 @@ void MapCleanParams::validate() const {
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
 }
 
-MapCleaner::MapCleaner(const MapCleanParams& p) : p_(p), static_(p.voxel_size), dynamic_(p.voxel_size) {
-  p_.validate();
+namespace {
+const MapCleanParams& validated(const MapCleanParams& p) {
+  p.validate();
+  return p;
 }
+}  // namespace
+
+MapCleaner::MapCleaner(const MapCleanParams& p)
+    : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size) {}
 
 FrameRecord MapCleaner::record(const core::DetectionResult& r, const Eigen::Isometry3d& sensor_pose) {
   FrameRecord rec;

@@ -80,16 +80,16 @@ class StampedPoses {
       if (p.timestamp_ns <= t) best = &p;
     return best;
   }
-  [[noreturn]] void missing(const Scan& s) const {
+  [[noreturn]] void missing(const Scan& s, const std::string& hint = "") const {
     const std::int64_t t = s.frame.timestamp_ns;
     if (t > poses_.back().timestamp_ns + tol_)
       throw std::runtime_error("'" + file_ + "' has " + std::to_string(poses_.size()) +
                                " poses, fewer than the scans: none for " + scanName(s) +
-                               " (its last pose is at " + seconds(poses_.back().timestamp_ns) + ")");
+                               " (its last pose is at " + seconds(poses_.back().timestamp_ns) + ")" + hint);
     const auto* near = core::findPose(poses_, t, INT64_MAX / 4);
     throw std::runtime_error("'" + file_ + "': no pose within " + seconds(tol_) + " of " + scanName(s) +
                              " (nearest at " + seconds(near->timestamp_ns) +
-                             "): the timestamps do not match");
+                             "): the timestamps do not match" + hint);
   }
   const std::string& file() const { return file_; }
 
@@ -145,8 +145,7 @@ class SimplemapPoses : public PoseSource {
     const auto* prev = keyframes_.before(t);
     if (!prev || !last_kf_) keyframes_.missing(s);
     if (!s.odometry || !last_kf_odometry_)
-      throw std::runtime_error(scanName(s) + " is not a keyframe of '" + keyframes_.file() +
-                               "' and the rawlog has no odometry to place it from the last keyframe");
+      keyframes_.missing(s, "; scans between keyframes need odometry in the rawlog, and there is none");
     return *last_kf_ * (last_kf_odometry_->inverse() * *s.odometry) * s.mount;
   }
   std::string describe() const override { return "simplemap '" + keyframes_.file() + "'"; }
