@@ -32,7 +32,7 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<double> pose_tol("", "pose-tolerance", "Timestamp matching tolerance [s]", false, 0.001, "s", cmd);
   TCLAP::ValueArg<std::string> config("c", "config",
                                       "INI: detector sections (as dynobj.ini) and [mapclean] (voxel_size, "
-                                      "second_pass, box_margin, min_range)", false, "", "file.ini", cmd);
+                                      "second_pass, box_margin, min_range, dynamic_vote)", false, "", "file.ini", cmd);
   TCLAP::ValueArg<double> voxel("", "voxel", "Map voxel size [m] (0 = every point)", false, -1, "m", cmd);
   TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
   TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (PCD folders, point clouds)", false, "",
@@ -88,8 +88,9 @@ int run(int argc, char** argv) {
   std::printf("dynobj-mapclean: %zu scans, poses: %s, %s\n", s.scans, s.poses.c_str(),
               o.clean.second_pass ? "two passes" : "single pass");
   std::printf("  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
-              "dynamic, %zu points added by the second pass\n",
-              s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks, s.backfilled);
+              "dynamic, %zu points added by the second pass, %zu voxels by the vote\n",
+              s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks, s.backfilled,
+              s.voted);
   if (o.write_simplemap) std::printf("  cleaned simplemap: %zu keyframes\n", s.keyframes);
   if (!o.export_kth.empty()) std::printf("  KTH export: %zu frames -> %s\n", s.exported_frames, o.export_kth.c_str());
   if (s.scores) {

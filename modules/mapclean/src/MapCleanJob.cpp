@@ -139,6 +139,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     }
   }
 
+  sum.voted = cleaner.finish();
   const std::vector<MapPoint> st = cleaner.staticMap().points(), dy = cleaner.dynamicMap().points();
   sum.points_static = cleaner.staticMap().pointsInserted();
   sum.points_dynamic = cleaner.dynamicMap().pointsInserted();

@@ -11,12 +11,14 @@ void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("second_pass", second_pass);
   v.value("box_margin", box_margin);
   v.value("min_range", min_range);
+  v.value("dynamic_vote", dynamic_vote);
 }
 
 void MapCleanParams::validate() const {
   core::requireInRange("voxel_size", voxel_size, 0.0, 10.0);
   core::requireInRange("box_margin", box_margin, 0.0, 5.0);
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
+  core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
 }
 
 namespace {
@@ -73,6 +75,13 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame, co
         }
     }
   return mask;
+}
+
+std::size_t MapCleaner::finish() {
+  if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
+  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static) {
+    return static_cast<double>(n_static) * p_.dynamic_vote > static_cast<double>(dynamic_.countAt(key));
+  });
 }
 
 void MapCleaner::accumulate(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,

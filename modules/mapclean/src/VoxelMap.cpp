@@ -44,6 +44,11 @@ void VoxelMap::insert(const MapPoint& p) {
   c.n++;
 }
 
+std::uint32_t VoxelMap::countAt(std::uint64_t key) const {
+  const auto it = cells_.find(key);
+  return it == cells_.end() ? 0 : it->second.n;
+}
+
 std::size_t VoxelMap::size() const { return voxel_ == 0.0 ? raw_.size() : cells_.size(); }
 
 std::vector<MapPoint> VoxelMap::points() const {

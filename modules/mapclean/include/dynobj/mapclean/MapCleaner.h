@@ -46,6 +46,9 @@ struct MapCleanParams : public core::StageParams {
   bool second_pass = true;    ///< mark confirmed tracks' earlier frames (see above)
   double box_margin = 0.15;   ///< [m] growth of a track's box sideways and upwards (second pass)
   double min_range = 0.0;     ///< [m] points nearer than this (e.g. the robot itself) are not mapped
+  /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
+  /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
+  double dynamic_vote = 1.0;
 
   void visit(core::ParamVisitor& v) override;
   void validate() const override;
@@ -81,6 +84,9 @@ class MapCleaner {
   /// Adds every valid pixel of `frame` (placed with `sensor_pose`) to the static or dynamic map.
   void accumulate(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
                   const Eigen::Isometry3d& sensor_pose);
+
+  /// After the last scan: applies the voxel vote. Returns the voxels moved.
+  std::size_t finish();
 
   const VoxelMap& staticMap() const { return static_; }
   const VoxelMap& dynamicMap() const { return dynamic_; }

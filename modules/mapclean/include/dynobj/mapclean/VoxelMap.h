@@ -36,6 +36,30 @@ class VoxelMap {
   /// +-2^20 voxels from the origin. Only for voxel size > 0.
   std::uint64_t keyOf(float x, float y, float z) const;
 
+  /// Points inserted into the voxel `key` (0 when empty). Only for voxel size > 0.
+  std::uint32_t countAt(std::uint64_t key) const;
+  /// Moves to `other` (same voxel size) every voxel for which keep(key, count) is false; returns
+  /// how many voxels moved.
+  template <class Keep>
+  std::size_t moveVoxelsTo(VoxelMap& other, Keep&& keep) {
+    std::size_t moved = 0;
+    for (auto it = cells_.begin(); it != cells_.end();) {
+      if (keep(it->first, it->second.n)) {
+        ++it;
+        continue;
+      }
+      Cell& dst = other.cells_[it->first];
+      dst.sx += it->second.sx;
+      dst.sy += it->second.sy;
+      dst.sz += it->second.sz;
+      dst.si += it->second.si;
+      dst.n += it->second.n;
+      it = cells_.erase(it);
+      moved++;
+    }
+    return moved;
+  }
+
  private:
   struct Cell {
     double sx = 0, sy = 0, sz = 0, si = 0;
