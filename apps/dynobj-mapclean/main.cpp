@@ -92,7 +92,8 @@ int run(int argc, char** argv) {
               s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks, s.backfilled,
               s.voted);
   if (o.write_simplemap) std::printf("  cleaned simplemap: %zu keyframes\n", s.keyframes);
-  if (!o.export_kth.empty()) std::printf("  KTH export: %zu frames -> %s\n", s.exported_frames, o.export_kth.c_str());
+  if (!o.export_kth.empty()) std::printf("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,
+                o.export_kth.c_str());
   if (s.scores) {
     const auto& m = *s.scores;
     std::printf("  SA %s  DA %s  AA %s  ghost points %zu  (GT static %zu kept %zu, GT dynamic %zu removed %zu, "

@@ -165,6 +165,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   if (exporter) {
     exporter->close();
     sum.exported_frames = exporter->frames();
+    sum.exported_points = exporter->points();
     sum.files.push_back(o.export_kth);
   }
 
