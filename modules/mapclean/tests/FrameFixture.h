@@ -1,15 +1,24 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Tiny hand-made LiDAR frames for the mapclean tests.
+// Tiny hand-made LiDAR frames and a scratch folder for the mapclean tests.
 #pragma once
 
 #include <dynobj/core/LidarFrame.h>
 #include <dynobj/core/SensorModel.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace dynobj::mapclean::test {
+
+/// A path in the tests' scratch folder (created if missing).
+inline std::string tmpPath(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / "dynobj-mapclean-tests";
+  std::filesystem::create_directories(d);
+  return (d / name).string();
+}
 
 /// 4 beams (+15, +5, -5, -15 deg) x 8 azimuth bins, uniform.
 inline core::SensorModel tinySensor() {

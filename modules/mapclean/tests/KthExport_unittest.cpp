@@ -12,7 +12,7 @@ namespace mc = dynobj::mapclean;
 namespace fs = std::filesystem;
 
 TEST(KthExport, ExportThenImportRoundTrips) {
-  const fs::path dir = fs::temp_directory_path() / "dynobj-mapclean-tests" / "kth";
+  const fs::path dir = mc::test::tmpPath("kth");
   fs::remove_all(dir);
   // Points on the tiny sensor's pixel-centre rays, so re-projection finds the same pixels.
   const auto ray = [](int row, int col, float range) {

@@ -2,20 +2,19 @@
 #include <dynobj/mapclean/PointCloudIO.h>
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "FrameFixture.h"
 
 namespace mc = dynobj::mapclean;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "dynobj-mapclean-tests";
-  fs::create_directories(d);
-  return (d / name).string();
-}
+std::string tmp(const std::string& name) { return dynobj::mapclean::test::tmpPath(name); }
 
 Eigen::Isometry3d somePose() {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

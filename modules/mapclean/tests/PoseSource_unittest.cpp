@@ -17,11 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "dynobj-mapclean-tests";
-  fs::create_directories(d);
-  return (d / name).string();
-}
+std::string tmp(const std::string& name) { return dynobj::mapclean::test::tmpPath(name); }
 
 Eigen::Isometry3d shift(double x, double y, double yaw = 0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
