@@ -106,3 +106,18 @@ TEST(MapCleaner, BadParametersNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("voxel_size"), std::string::npos);
   }
 }
+
+TEST(MapCleaner, VoxelVoteMovesMostlyDynamicVoxels) {
+  mc::MapCleaner cleaner(params(1.0));  // dynamic_vote = 1
+  // Voxel A: 1 static + 2 dynamic points -> moves; voxel B: 2 static + 1 dynamic -> stays.
+  const auto f = mc::test::tinyFrame({{{0, 0}, {0.5f, 0.5f, 0.5f}}, {{0, 1}, {0.6f, 0.5f, 0.5f}}, {{0, 2}, {0.7f, 0.5f, 0.5f}},
+                                      {{1, 0}, {3.5f, 0.5f, 0.5f}}, {{1, 1}, {3.6f, 0.5f, 0.5f}}, {{1, 2}, {3.7f, 0.5f, 0.5f}}});
+  cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
+  mask(0, 1) = mask(0, 2) = mask(1, 2) = 255;
+  cleaner.accumulate(f, mask, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(cleaner.finish(), 1u);
+  ASSERT_EQ(cleaner.staticMap().size(), 1u);
+  EXPECT_NEAR(cleaner.staticMap().points()[0].x, 3.55, 1e-5);  // only B's static points
+  ASSERT_EQ(cleaner.dynamicMap().size(), 2u);
+  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, 0.6, 1e-5);  // A: all three points
+}
