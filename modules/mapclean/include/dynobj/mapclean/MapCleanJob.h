@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// dynobj-mapclean's whole job, streaming (memory grows with the map, not the number of scans):
+//   pass 1: the detector over every scan, the pose of each scan (FrameRecord: no points kept);
+//   pass 2 (second_pass): every scan again, dynamic = detector + confirmed tracks' boxes, into the
+//           static / dynamic voxel maps, the cleaned simplemap and the KTH export;
+//           (without second_pass this happens during pass 1: on-the-fly, causal);
+//   outputs: static/dynamic .ply, .pointsmap, .txt, top-down PNGs, cleaned .simplemap, poses.tum;
+//   metrics (with ground truth only, after the map is final): SA / DA / AA / ghost points.
+// Every output file is written as *.partial and renamed when complete; on an error nothing that
+// looks complete is left behind.
+#pragma once
+
+#include <dynobj/core/DynamicObjectDetector.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynobj/mapclean/MapCleaner.h"
+#include "dynobj/mapclean/MapMetrics.h"
+#include "dynobj/mapclean/PoseSource.h"
+#include "dynobj/mapclean/ScanSource.h"
+
+namespace dynobj::mapclean {
+
+struct MapCleanOptions {
+  std::string input;       ///< .rawlog or a KTH DynamicMap folder
+  std::string out_dir;     ///< created if missing
+  std::string poses = "odometry";  ///< PoseSource spec
+  PoseSourceOptions pose_options;
+  ScanSourceOptions scan_options;
+  core::DetectorParams detector;
+  MapCleanParams clean;
+  std::string ground_truth;  ///< label file v1 (rawlog input) or a labelled gt_cloud.pcd; "" = none
+  double tolerance = 0.05;   ///< [m] metric: a GT point is kept when a map point is this close
+  std::string export_kth;    ///< folder for the KTH export; "" = none
+  bool write_simplemap = true;
+  double keyframe_distance = 1.0;              ///< [m] cleaned simplemap keyframes
+  double keyframe_angle = 30.0 * M_PI / 180.0; ///< [rad]
+  double png_resolution = 0.05;                ///< [m/px]
+};
+
+struct MapCleanSummary {
+  std::size_t scans = 0;
+  std::size_t points_static = 0, points_dynamic = 0;  ///< scan points sent to each map
+  std::size_t map_static = 0, map_dynamic = 0;        ///< map points (voxels)
+  std::size_t voted = 0;  ///< static voxels moved to the dynamic map by the voxel vote
+  std::size_t backfilled = 0, confirmed_tracks = 0, keyframes = 0, exported_frames = 0, exported_points = 0;
+  std::optional<MapScores> scores;
+  std::string poses;  ///< description of the pose source
+  double seconds = 0;
+  std::vector<std::string> files;  ///< written
+};
+
+/// stage ("detect", "map", "evaluate"), scans done, total scans (0 when not known yet).
+using MapCleanProgress = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
+
+/// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input.
+MapCleanSummary runMapClean(const MapCleanOptions& opts, const MapCleanProgress& progress = {});
+
+}  // namespace dynobj::mapclean

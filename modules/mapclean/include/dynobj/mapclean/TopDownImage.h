@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Top-down (bird's-eye) PNG of a map: static points in grey by the highest point of each cell
+// (floor dark, walls and objects bright), dynamic points in red on top. Without MRPT (OpenCV).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <string>
+#include <vector>
+
+#include "dynobj/mapclean/VoxelMap.h"
+
+namespace dynobj::mapclean {
+
+/// The area drawn and the scale, shared by several images of one map so they overlay exactly.
+struct TopDownView {
+  double min_x = 0, min_y = 0, resolution = 0.05;  ///< [m], [m/px]
+  int width = 0, height = 0;                        ///< [px]; +x right, +y up
+  double z_ground = 0, z_span = 2.5;                ///< grey scale: z_ground -> dark, +span -> white
+
+  /// Fits every point of both sets with a 1 m margin; coarsens the resolution so that no side
+  /// exceeds `max_pixels`. z_ground = 2nd percentile of the heights.
+  static TopDownView fit(const std::vector<MapPoint>& a, const std::vector<MapPoint>& b,
+                         double resolution = 0.05, int max_pixels = 4000);
+};
+
+/// BGR image: black = nothing, grey = static (height), red = dynamic.
+cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& static_points,
+                      const std::vector<MapPoint>& dynamic_points);
+
+}  // namespace dynobj::mapclean

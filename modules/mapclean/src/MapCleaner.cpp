@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mapclean/MapCleaner.h"
+
+#include <dynobj/core/Config.h>
+#include <dynobj/core/LabelFile.h>
+
+namespace dynobj::mapclean {
+
+void MapCleanParams::visit(core::ParamVisitor& v) {
+  v.value("voxel_size", voxel_size);
+  v.value("second_pass", second_pass);
+  v.value("box_margin", box_margin);
+  v.value("min_range", min_range);
+  v.value("dynamic_vote", dynamic_vote);
+}
+
+void MapCleanParams::validate() const {
+  core::requireInRange("voxel_size", voxel_size, 0.0, 10.0);
+  core::requireInRange("box_margin", box_margin, 0.0, 5.0);
+  core::requireInRange("min_range", min_range, 0.0, 1000.0);
+  core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
+}
+
+namespace {
+const MapCleanParams& validated(const MapCleanParams& p) {
+  p.validate();
+  return p;
+}
+}  // namespace
+
+MapCleaner::MapCleaner(const MapCleanParams& p)
+    : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size) {}
+
+FrameRecord MapCleaner::record(const core::DetectionResult& r, const Eigen::Isometry3d& sensor_pose) {
+  FrameRecord rec;
+  rec.timestamp_ns = r.timestamp_ns;
+  rec.sensor_pose = sensor_pose;
+  rec.dynamic_pixels = core::pixelsOfMask(r.dynamic);
+  for (const core::TrackedObject& o : r.objects) {
+    rec.objects.push_back({o.id, o.dynamic, o.box_min.cast<float>(), o.box_max.cast<float>()});
+    if (o.dynamic) confirmed_.insert(o.id);
+  }
+  return rec;
+}
+
+cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame, const FrameRecord& rec,
+                                               bool second_pass) const {
+  cv::Mat_<std::uint8_t> mask(frame.rows(), frame.cols(), std::uint8_t{0});
+  auto* m = mask.ptr<std::uint8_t>(0);
+  for (auto px : rec.dynamic_pixels) {
+    if (px >= frame.pixelCount()) throw std::out_of_range("dynamic pixel outside the frame");
+    m[px] = 255;
+  }
+  if (!second_pass) return mask;
+  std::vector<ObjectBox> boxes;
+  const float g = static_cast<float>(p_.box_margin);
+  for (const ObjectBox& b : rec.objects)
+    if (confirmed_.count(b.id)) {  // grown sideways and upwards; never below the object's base
+      ObjectBox grown = b;
+      grown.min -= Eigen::Vector3f(g, g, 0.f);
+      grown.max += Eigen::Vector3f(g, g, g);
+      boxes.push_back(grown);
+    }
+  if (boxes.empty()) return mask;
+  for (int r = 0; r < frame.rows(); r++)
+    for (int c = 0; c < frame.cols(); c++) {
+      if (!frame.isValid(r, c) || mask(r, c)) continue;
+      const cv::Vec3f& p = frame.xyz(r, c);
+      for (const ObjectBox& b : boxes)
+        if (p[0] >= b.min.x() && p[0] <= b.max.x() && p[1] >= b.min.y() && p[1] <= b.max.y() &&
+            p[2] >= b.min.z() && p[2] <= b.max.z()) {
+          mask(r, c) = 255;
+          backfilled_++;
+          break;
+        }
+    }
+  return mask;
+}
+
+std::size_t MapCleaner::finish() {
+  if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
+  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static) {
+    return static_cast<double>(n_static) * p_.dynamic_vote > static_cast<double>(dynamic_.countAt(key));
+  });
+}
+
+void MapCleaner::accumulate(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
+                            const Eigen::Isometry3d& sensor_pose) {
+  forEachWorldPoint(frame, sensor_pose, p_.min_range, [&](int r, int c, const MapPoint& p) {
+    (dynamic_mask(r, c) ? dynamic_ : static_).insert(p);
+  });
+}
+
+}  // namespace dynobj::mapclean

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mapclean/MrptOutputs.h"
+
+#include <dynobj/mrpt/RangeScanLayout.h>
+#include <dynobj/mrpt/RangeScanTagging.h>
+#include <dynobj/mrpt/TimeConversion.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "PoseConversion.h"
+#include "dynobj/mapclean/AtomicFile.h"
+
+namespace dynobj::mapclean {
+
+CleanedSimplemapWriter::CleanedSimplemapWriter(std::string path, double keyframe_distance,
+                                               double keyframe_angle)
+    : path_(std::move(path)), dist_(keyframe_distance), angle_(keyframe_angle) {}
+
+void CleanedSimplemapWriter::add(const Scan& scan, const cv::Mat_<std::uint8_t>& dynamic_mask,
+                                 const Eigen::Isometry3d& sensor_pose) {
+  if (have_last_) {
+    const Eigen::Isometry3d d = last_.inverse() * sensor_pose;
+    const double angle = Eigen::AngleAxisd(d.linear()).angle();
+    if (d.translation().norm() < dist_ && angle < angle_) return;
+  }
+  have_last_ = true;
+  last_ = sensor_pose;
+  auto obs = std::make_shared<::mrpt::obs::CObservation3DRangeScan>();
+  const auto* in = dynamic_cast<const ::mrpt::obs::CObservation3DRangeScan*>(scan.observation.get());
+  if (in) {
+    *obs = *in;
+  } else {  // other LiDAR types (and PCD input): the organized layout of the frame
+    mrpt::frameToRangeScan(scan.frame, *obs);
+    obs->sensorLabel = scan.observation ? scan.observation->sensorLabel : std::string("LIDAR");
+    obs->timestamp = mrpt::fromUnixNs(scan.frame.timestamp_ns);
+    obs->sensorPose = detail::toCPose3D(scan.mount);
+  }
+  mrpt::dropDynamic(*obs, dynamic_mask);
+  auto sf = std::make_shared<::mrpt::obs::CSensoryFrame>();
+  sf->insert(obs);
+  const auto robot = detail::toCPose3D(sensor_pose * scan.mount.inverse());
+  map_.insert(std::make_shared<::mrpt::poses::CPose3DPDFGaussian>(robot), sf);
+}
+
+void CleanedSimplemapWriter::close() {
+  const std::string partial = partialName(path_);
+  if (!map_.saveToFile(partial)) {
+    std::remove(partial.c_str());
+    throw std::runtime_error("cannot write simplemap '" + partial + "'");
+  }
+  commitPartial(path_);
+}
+
+void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& points) {
+  ::mrpt::maps::CPointsMapXYZI map;
+  map.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); i++) {
+    map.setPointFast(i, points[i].x, points[i].y, points[i].z);
+    map.setPointIntensity(i, points[i].intensity);
+  }
+  {
+    const std::string file = base + ".pointsmap";
+    {
+      ::mrpt::io::CFileGZOutputStream out;
+      if (!out.open(partialName(file))) throw std::runtime_error("cannot write '" + partialName(file) + "'");
+      ::mrpt::serialization::archiveFrom(out) << map;
+    }
+    commitPartial(file);
+  }
+  const std::string txt = base + ".txt";
+  if (!map.saveXYZI_to_text_file(partialName(txt))) {
+    std::remove(partialName(txt).c_str());
+    throw std::runtime_error("cannot write '" + partialName(txt) + "'");
+  }
+  commitPartial(txt);
+}
+
+}  // namespace dynobj::mapclean

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mapclean/PoseSource.h"
+
+#include <dynobj/core/TumFile.h>
+#include <dynobj/mrpt/TimeConversion.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/poses/CPose3DPDF.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "PoseConversion.h"
+
+namespace dynobj::mapclean {
+namespace {
+
+std::string seconds(std::int64_t ns) {
+  char b[40];
+  std::snprintf(b, sizeof(b), "%.6f s", static_cast<double>(ns) * 1e-9);
+  return b;
+}
+
+std::string scanName(const Scan& s) {
+  return "scan " + std::to_string(s.index) + " (" + s.where + ", t = " + seconds(s.frame.timestamp_ns) + ")";
+}
+
+class OdometryPoses : public PoseSource {
+ public:
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
+    if (!s.odometry)
+      throw std::runtime_error("no odometry (CObservationOdometry) before " + scanName(s) +
+                               ": choose another pose source (--poses ego, a TUM file or a simplemap)");
+    return *s.odometry * s.mount;
+  }
+  std::string describe() const override { return "rawlog odometry"; }
+};
+
+class EgoPoses : public PoseSource {
+ public:
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion& ego) override {
+    pose_ = first_ ? s.mount : Eigen::Isometry3d(pose_ * ego.motion);
+    first_ = false;
+    return pose_;
+  }
+  std::string describe() const override { return "detector ego-motion"; }
+
+ private:
+  bool first_ = true;
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+};
+
+class ViewpointPoses : public PoseSource {
+ public:
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
+    if (!s.viewpoint)
+      throw std::runtime_error("--poses viewpoint needs a KTH DynamicMap PCD folder as input (" +
+                               scanName(s) + " has no VIEWPOINT)");
+    return *s.viewpoint;
+  }
+  std::string describe() const override { return "PCD VIEWPOINT"; }
+};
+
+/// Poses by timestamp; shared by the TUM and simplemap sources.
+class StampedPoses {
+ public:
+  StampedPoses(std::string file, std::vector<core::StampedPose> poses, std::int64_t tol_ns)
+      : file_(std::move(file)), poses_(std::move(poses)), tol_(tol_ns) {
+    std::sort(poses_.begin(), poses_.end(),
+              [](const auto& a, const auto& b) { return a.timestamp_ns < b.timestamp_ns; });
+    if (poses_.empty()) throw std::runtime_error("'" + file_ + "' holds no pose");
+  }
+  const core::StampedPose* find(std::int64_t t) const { return core::findPose(poses_, t, tol_); }
+  /// The latest pose before t, or null.
+  const core::StampedPose* before(std::int64_t t) const {
+    const core::StampedPose* best = nullptr;
+    for (const auto& p : poses_)
+      if (p.timestamp_ns <= t) best = &p;
+    return best;
+  }
+  [[noreturn]] void missing(const Scan& s, const std::string& hint = "") const {
+    const std::int64_t t = s.frame.timestamp_ns;
+    if (t > poses_.back().timestamp_ns + tol_)
+      throw std::runtime_error("'" + file_ + "' has " + std::to_string(poses_.size()) +
+                               " poses, fewer than the scans: none for " + scanName(s) +
+                               " (its last pose is at " + seconds(poses_.back().timestamp_ns) + ")" + hint);
+    const auto* near = core::findPose(poses_, t, INT64_MAX / 4);
+    throw std::runtime_error("'" + file_ + "': no pose within " + seconds(tol_) + " of " + scanName(s) +
+                             " (nearest at " + seconds(near->timestamp_ns) +
+                             "): the timestamps do not match" + hint);
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  std::vector<core::StampedPose> poses_;
+  std::int64_t tol_;
+};
+
+class TumPoses : public PoseSource {
+ public:
+  TumPoses(const std::string& file, const PoseSourceOptions& o)
+      : poses_(file, core::readTumFile(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)),
+        robot_(o.tum_robot_poses) {}
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
+    const auto* p = poses_.find(s.frame.timestamp_ns);
+    if (!p) poses_.missing(s);
+    return robot_ ? Eigen::Isometry3d(p->pose * s.mount) : p->pose;
+  }
+  std::string describe() const override { return "TUM file '" + poses_.file() + "'"; }
+
+ private:
+  StampedPoses poses_;
+  bool robot_;
+};
+
+std::vector<core::StampedPose> simplemapKeyframes(const std::string& file) {
+  ::mrpt::maps::CSimpleMap sm;
+  if (!sm.loadFromFile(file)) throw std::runtime_error("cannot read simplemap '" + file + "'");
+  std::vector<core::StampedPose> out;
+  for (std::size_t i = 0; i < sm.size(); i++) {
+    const auto [pdf, sf] = std::as_const(sm).get(i);
+    if (!pdf || !sf || sf->size() == 0) continue;
+    core::StampedPose p;
+    p.timestamp_ns = mrpt::toUnixNs((*sf->begin())->timestamp);
+    p.pose = detail::toIsometry(pdf->getMeanVal());
+    out.push_back(p);
+  }
+  return out;
+}
+
+class SimplemapPoses : public PoseSource {
+ public:
+  SimplemapPoses(const std::string& file, const PoseSourceOptions& o)
+      : keyframes_(file, simplemapKeyframes(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)) {}
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
+    const std::int64_t t = s.frame.timestamp_ns;
+    if (const auto* k = keyframes_.find(t)) {  // a keyframe: its robot pose, and its odometry
+      last_kf_ = k->pose;
+      last_kf_odometry_ = s.odometry;
+      return k->pose * s.mount;
+    }
+    const auto* prev = keyframes_.before(t);
+    if (!prev || !last_kf_) keyframes_.missing(s);
+    if (!s.odometry || !last_kf_odometry_)
+      keyframes_.missing(s, "; scans between keyframes need odometry in the rawlog, and there is none");
+    return *last_kf_ * (last_kf_odometry_->inverse() * *s.odometry) * s.mount;
+  }
+  std::string describe() const override { return "simplemap '" + keyframes_.file() + "'"; }
+
+ private:
+  StampedPoses keyframes_;
+  std::optional<Eigen::Isometry3d> last_kf_, last_kf_odometry_;
+};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::unique_ptr<PoseSource> makePoseSource(const std::string& spec, const PoseSourceOptions& opts) {
+  if (spec == "odometry") return std::make_unique<OdometryPoses>();
+  if (spec == "ego") return std::make_unique<EgoPoses>();
+  if (spec == "viewpoint") return std::make_unique<ViewpointPoses>();
+  const bool tum = endsWith(spec, ".tum") || endsWith(spec, ".txt");
+  const bool simplemap = endsWith(spec, ".simplemap") || endsWith(spec, ".simplemap.gz");
+  if (!tum && !simplemap)
+    throw std::runtime_error("poses '" + spec + "': unknown format (expected odometry, ego, viewpoint, "
+                             "a TUM file *.tum|*.txt or an MRPT *.simplemap[.gz])");
+  if (!std::filesystem::is_regular_file(spec))
+    throw std::runtime_error("poses file '" + spec + "' does not exist");
+  if (tum) return std::make_unique<TumPoses>(spec, opts);
+  return std::make_unique<SimplemapPoses>(spec, opts);
+}
+
+}  // namespace dynobj::mapclean

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mapclean/ScanSource.h"
+
+#include <dynobj/core/SphericalProjection.h>
+#include <dynobj/mrpt/ObservationConverter.h>
+#include <dynobj/mrpt/RawlogReader.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "PoseConversion.h"
+#include "dynobj/mapclean/PointCloudIO.h"
+
+namespace dynobj::mapclean {
+namespace {
+
+namespace fs = std::filesystem;
+
+using detail::toIsometry;
+
+class RawlogScans : public ScanSource {
+ public:
+  RawlogScans(std::string path, const ScanSourceOptions& o)
+      : path_(std::move(path)), opts_(o), converter_(o.sensor) {
+    rewind();
+  }
+  void rewind() override {
+    reader_ = std::make_unique<mrpt::RawlogReader>(path_);
+    pending_.clear();
+    pos_ = 0;
+    scans_ = 0;
+    odometry_.reset();
+  }
+  std::string describe() const override { return "rawlog '" + path_ + "'"; }
+
+  bool next(Scan& s) override {
+    for (;;) {
+      while (pos_ < pending_.size()) {
+        const auto obs = pending_[pos_++];
+        if (!obs) continue;
+        if (const auto* odo = dynamic_cast<const ::mrpt::obs::CObservationOdometry*>(obs.get())) {
+          odometry_ = toIsometry(::mrpt::poses::CPose3D(odo->odometry));
+          continue;
+        }
+        if (!mrpt::ObservationConverter::isLidarObservation(*obs)) continue;
+        if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) continue;
+        if (opts_.sensor_label.empty()) {  // one LiDAR per map: a second label is an error
+          if (first_label_.empty()) first_label_ = obs->sensorLabel;
+          if (obs->sensorLabel != first_label_)
+            throw std::runtime_error("'" + path_ + "' holds several LiDARs ('" + first_label_ + "', '" +
+                                     obs->sensorLabel + "'): choose one with --sensor-label");
+        }
+        converter_.convert(*obs, s.frame);
+        ::mrpt::poses::CPose3D mount;
+        obs->getSensorPose(mount);
+        s.index = scans_++;
+        s.where = "'" + path_ + "' entry " + std::to_string(entry_.index);
+        s.mount = toIsometry(mount);
+        s.odometry = odometry_;
+        s.viewpoint.reset();
+        s.observation = obs;
+        return true;
+      }
+      if (!reader_->next(entry_)) return false;
+      pending_ = entry_.observations();
+      pos_ = 0;
+    }
+  }
+
+ private:
+  std::string path_;
+  ScanSourceOptions opts_;
+  mrpt::ObservationConverter converter_;
+  std::unique_ptr<mrpt::RawlogReader> reader_;
+  mrpt::RawlogEntry entry_;
+  std::vector<::mrpt::obs::CObservation::Ptr> pending_;
+  std::size_t pos_ = 0, scans_ = 0;
+  std::optional<Eigen::Isometry3d> odometry_;
+  std::string first_label_;
+};
+
+class PcdFolderScans : public ScanSource {
+ public:
+  PcdFolderScans(const std::string& dir, const ScanSourceOptions& o) : dir_(dir) {
+    if (!o.sensor)
+      throw std::runtime_error("'" + dir + "' is a PCD folder: give the sensor model (--sensor) to "
+                               "arrange its points into LiDAR frames");
+    projection_ = std::make_unique<core::SphericalProjection>(*o.sensor);
+    for (const auto& e : fs::directory_iterator(fs::path(dir) / "pcd"))
+      if (e.path().extension() == ".pcd") files_.push_back(e.path().string());
+    std::sort(files_.begin(), files_.end());
+    if (files_.empty()) throw std::runtime_error("'" + dir + "/pcd' holds no .pcd file");
+  }
+  void rewind() override { pos_ = 0; }
+  std::string describe() const override { return "PCD folder '" + dir_ + "'"; }
+
+  bool next(Scan& s) override {
+    if (pos_ >= files_.size()) return false;
+    const std::string& file = files_[pos_];
+    const PcdCloud pcd = readPcd(file);
+    const Eigen::Isometry3f to_sensor = pcd.viewpoint.inverse().cast<float>();
+    core::PointCloud cloud;
+    cloud.reserve(pcd.points.size(), pcd.has_intensity, false);
+    for (const MapPoint& p : pcd.points) {
+      const Eigen::Vector3f q = to_sensor * Eigen::Vector3f(p.x, p.y, p.z);
+      if (pcd.has_intensity) cloud.push_back(q.x(), q.y(), q.z(), p.intensity);
+      else cloud.push_back(q.x(), q.y(), q.z());
+    }
+    projection_->project(cloud, s.frame);
+    s.frame.timestamp_ns = timestampOf(pcd);
+    s.index = pos_++;
+    s.where = "'" + file + "'";
+    s.mount = Eigen::Isometry3d::Identity();
+    s.odometry.reset();
+    s.viewpoint = pcd.viewpoint;
+    s.observation.reset();
+    return true;
+  }
+
+ private:
+  /// dynobj's exports carry "# timestamp_ns <t>"; others get index / frequency.
+  std::int64_t timestampOf(const PcdCloud& pcd) const {
+    for (const std::string& c : pcd.comments)
+      if (c.rfind("timestamp_ns ", 0) == 0) return std::stoll(c.substr(13));
+    return static_cast<std::int64_t>(1e9 * static_cast<double>(pos_) / projection_->sensor().frequency);
+  }
+
+  std::string dir_;
+  std::unique_ptr<core::SphericalProjection> projection_;
+  std::vector<std::string> files_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<ScanSource> openScanSource(const std::string& input, const ScanSourceOptions& opts) {
+  if (!fs::exists(input)) throw std::runtime_error("input '" + input + "' does not exist");
+  if (fs::is_directory(input)) {
+    if (!fs::is_directory(fs::path(input) / "pcd"))
+      throw std::runtime_error("input '" + input + "': unknown format (a directory, but not a KTH "
+                               "DynamicMap folder with pcd/NNNNNN.pcd)");
+    return std::make_unique<PcdFolderScans>(input, opts);
+  }
+  const std::string ext = fs::path(input).extension().string();
+  if (ext != ".rawlog" && ext != ".gz")
+    throw std::runtime_error("input '" + input + "': unknown format (expected a .rawlog file or a "
+                             "KTH DynamicMap folder with pcd/NNNNNN.pcd)");
+  return std::make_unique<RawlogScans>(input, opts);
+}
+
+}  // namespace dynobj::mapclean

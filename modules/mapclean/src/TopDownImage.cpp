@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mapclean/TopDownImage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dynobj::mapclean {
+
+TopDownView TopDownView::fit(const std::vector<MapPoint>& a, const std::vector<MapPoint>& b,
+                             double resolution, int max_pixels) {
+  TopDownView v;
+  double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  double hi[2] = {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  std::vector<float> z;
+  z.reserve(a.size() + b.size());
+  for (const auto* set : {&a, &b})
+    for (const MapPoint& p : *set) {
+      lo[0] = std::min(lo[0], double{p.x});
+      lo[1] = std::min(lo[1], double{p.y});
+      hi[0] = std::max(hi[0], double{p.x});
+      hi[1] = std::max(hi[1], double{p.y});
+      z.push_back(p.z);
+    }
+  if (z.empty()) {
+    lo[0] = lo[1] = -1;
+    hi[0] = hi[1] = 1;
+    z.push_back(0.f);
+  }
+  const double margin = 1.0;
+  v.min_x = lo[0] - margin;
+  v.min_y = lo[1] - margin;
+  const double w = hi[0] - lo[0] + 2 * margin, h = hi[1] - lo[1] + 2 * margin;
+  v.resolution = std::max(resolution, std::max(w, h) / max_pixels);
+  v.width = static_cast<int>(std::ceil(w / v.resolution));
+  v.height = static_cast<int>(std::ceil(h / v.resolution));
+  const auto k = z.size() / 50;
+  std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(k), z.end());
+  v.z_ground = z[k];
+  return v;
+}
+
+cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& static_points,
+                      const std::vector<MapPoint>& dynamic_points) {
+  cv::Mat_<float> top(view.height, view.width, std::numeric_limits<float>::lowest());
+  cv::Mat_<std::uint8_t> dyn(view.height, view.width, std::uint8_t{0});
+  const auto cell = [&view](const MapPoint& p, int& r, int& c) {
+    c = static_cast<int>(std::floor((p.x - view.min_x) / view.resolution));
+    r = view.height - 1 - static_cast<int>(std::floor((p.y - view.min_y) / view.resolution));
+    return r >= 0 && r < view.height && c >= 0 && c < view.width;
+  };
+  int r = 0, c = 0;
+  for (const MapPoint& p : static_points)
+    if (cell(p, r, c)) top(r, c) = std::max(top(r, c), p.z);
+  for (const MapPoint& p : dynamic_points)
+    if (cell(p, r, c)) dyn(r, c) = 255;
+  cv::Mat img(view.height, view.width, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (r = 0; r < view.height; r++)
+    for (c = 0; c < view.width; c++) {
+      if (dyn(r, c)) {
+        img.at<cv::Vec3b>(r, c) = cv::Vec3b(0, 0, 255);
+      } else if (top(r, c) > std::numeric_limits<float>::lowest()) {
+        const double t = std::clamp((top(r, c) - view.z_ground) / view.z_span, 0.0, 1.0);
+        const auto g = static_cast<std::uint8_t>(60 + 195 * t);
+        img.at<cv::Vec3b>(r, c) = cv::Vec3b(g, g, g);
+      }
+    }
+  return img;
+}
+
+}  // namespace dynobj::mapclean
