@@ -48,16 +48,30 @@ SequenceMetrics SequenceMetrics::compute(const core::LabelFile& truth, const cor
       throw EvaluationError("sweep " + std::to_string(k) + ": ground truth at t = " +
                             std::to_string(t.timestamp_ns) + " ns, prediction at " +
                             std::to_string(p.timestamp_ns) + " ns");
-    SweepMetrics s;
-    s.timestamp_ns = t.timestamp_ns;
-    const auto tp = static_cast<std::int64_t>(common(t.pixels, p.pixels));
-    s.counts.tp = tp;
-    s.counts.fp = static_cast<std::int64_t>(p.pixels.size()) - tp;
-    s.counts.fn = static_cast<std::int64_t>(t.pixels.size()) - tp;
-    m.total += s.counts;
-    m.sweeps.push_back(s);
+    m.add(t.timestamp_ns, t.pixels, p.pixels);
   }
   return m;
+}
+
+void SequenceMetrics::add(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& truth,
+                          const std::vector<std::uint32_t>& predicted, std::int64_t valid_points,
+                          double ms) {
+  SweepMetrics s;
+  s.timestamp_ns = timestamp_ns;
+  s.ms = ms;
+  const auto tp = static_cast<std::int64_t>(common(truth, predicted));
+  s.counts.tp = tp;
+  s.counts.fp = static_cast<std::int64_t>(predicted.size()) - tp;
+  s.counts.fn = static_cast<std::int64_t>(truth.size()) - tp;
+  if (valid_points >= 0) s.counts.tn = std::max<std::int64_t>(0, valid_points - tp - s.counts.fp - s.counts.fn);
+  else static_known = false;
+  total += s.counts;
+  sweeps.push_back(s);
+}
+
+std::optional<double> SequenceMetrics::staticFlagged() const {
+  if (!static_known || sweeps.empty()) return std::nullopt;
+  return total.falsePositiveRate();
 }
 
 Distribution SequenceMetrics::distribution(Metric metric) const {

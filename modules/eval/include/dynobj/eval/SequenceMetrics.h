@@ -24,7 +24,8 @@ class EvaluationError : public std::runtime_error {
 
 struct SweepMetrics {
   std::int64_t timestamp_ns = 0;
-  core::Confusion counts;  ///< tp, fp, fn (tn unknown from label files: 0)
+  core::Confusion counts;  ///< tp, fp, fn; tn when the sweep's valid point count is known
+  double ms = -1;          ///< detector time [ms] (-1 = unknown)
 };
 
 /// Quartiles of a per-sweep metric over the sweeps where it is defined.
@@ -36,6 +37,13 @@ struct Distribution {
 struct SequenceMetrics {
   std::vector<SweepMetrics> sweeps;
   core::Confusion total;  ///< summed over every point of every sweep (micro)
+  bool static_known = true;  ///< every sweep's valid point count was given (tn is meaningful)
+
+  /// Appends one sweep: ascending pixel lists; `valid_points` < 0 when unknown (tn then 0).
+  void add(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& truth,
+           const std::vector<std::uint32_t>& predicted, std::int64_t valid_points = -1, double ms = -1);
+  /// Share of truly static points flagged dynamic over the sequence (n/a when unknown).
+  std::optional<double> staticFlagged() const;
 
   /// Matches the two files sweep by sweep. Both must have the same image size and exactly the
   /// same timestamps in the same order; otherwise EvaluationError names the first mismatch.

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/eval/ExperimentRunner.h"
+
+#include <dynobj/core/LabelFile.h>
+#include <dynobj/core/TumFile.h>
+#include <dynobj/mrpt/LidarObservationStream.h>
+#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/sim/LidarSimulator.h>
+#include <dynobj/sim/SequenceWriter.h>
+#include <mrpt/maps/CPointCloudFilterByDistance.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <filesystem>
+#include <map>
+
+#include "dynobj/eval/Overlay.h"
+
+namespace dynobj::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ifExists(const std::string& path) { return fs::exists(path) ? path : std::string(); }
+
+/// MRPT's CPointCloudFilterByDistance over the valid pixels of each frame (default options:
+/// a point is deleted when the previous keyframe has no point within min_dist of it).
+class MrptDistanceFilter {
+ public:
+  void process(const core::LidarFrame& f, const Eigen::Isometry3d& sensor_in_world,
+               cv::Mat_<std::uint8_t>& mask) {
+    cloud_.clear();
+    pixel_.clear();
+    for (int r = 0; r < f.rows(); r++)
+      for (int c = 0; c < f.cols(); c++)
+        if (f.isValid(r, c)) {
+          const cv::Vec3f& p = f.xyz(r, c);
+          cloud_.insertPoint(p[0], p[1], p[2]);
+          pixel_.push_back(r * f.cols() + c);
+        }
+    std::vector<bool> deleted;
+    ::mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
+    extra.out_deletion_mask = &deleted;
+    extra.do_not_delete = true;
+    ::mrpt::math::CMatrixDouble44 T;
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++) T(i, j) = sensor_in_world.matrix()(i, j);
+    filter_.filter(&cloud_, dynobj::mrpt::fromUnixNs(f.timestamp_ns),
+                   ::mrpt::poses::CPose3D::FromHomogeneousMatrix(T), &extra);
+    mask.create(f.rows(), f.cols());
+    mask.setTo(0);
+    for (std::size_t i = 0; i < deleted.size() && i < pixel_.size(); i++)
+      if (deleted[i]) mask(pixel_[i] / f.cols(), pixel_[i] % f.cols()) = 255;
+  }
+
+ private:
+  ::mrpt::maps::CPointCloudFilterByDistance filter_;
+  ::mrpt::maps::CSimplePointsMap cloud_;
+  std::vector<int> pixel_;
+};
+
+}  // namespace
+
+SequenceFiles SequenceFiles::locate(const std::string& path) {
+  SequenceFiles s;
+  if (fs::is_directory(path)) {
+    for (const auto& e : fs::directory_iterator(path))
+      if (e.path().extension() == ".rawlog") {
+        if (!s.rawlog.empty()) throw EvaluationError("'" + path + "' holds more than one .rawlog");
+        s.rawlog = e.path().string();
+      }
+    if (s.rawlog.empty()) throw EvaluationError("no .rawlog in '" + path + "'");
+  } else if (fs::exists(path)) {
+    s.rawlog = path;
+  } else {
+    throw EvaluationError("'" + path + "' does not exist");
+  }
+  const fs::path base = fs::path(s.rawlog).replace_extension();
+  s.name = base.filename().string();
+  s.labels = base.string() + ".gt.labels";
+  if (!fs::exists(s.labels)) throw EvaluationError("no ground truth '" + s.labels + "' beside the rawlog");
+  s.instances = ifExists(base.string() + ".gt.instances");
+  s.objects = ifExists(base.string() + ".gt.objects.csv");
+  s.poses = ifExists(base.string() + ".gt.tum");
+  return s;
+}
+
+SequenceFiles SequenceFiles::prepare(const std::string& input, const std::string& out_dir,
+                                     const std::string& share_dir, int frames) {
+  if (fs::path(input).extension() != ".yaml") return locate(input);
+  std::map<std::string, std::string> overrides;
+  if (frames > 0) overrides["frames"] = std::to_string(frames);
+  const sim::LidarSimulator simulator(sim::Scenario::fromYamlFile(input, share_dir, overrides));
+  const sim::Scenario& sc = simulator.scenario();
+  const std::string dir = out_dir + "/" + sc.name;
+  if (!fs::exists(dir + "/" + sc.name + ".rawlog")) {
+    sim::SequenceWriter writer(dir, sc);
+    for (int k = 0; k < sc.frames; k++) writer.write(simulator.simulate(k));
+    writer.close();
+  }
+  return locate(dir);
+}
+
+const std::set<std::string>& RunOptions::modes() {
+  static const std::set<std::string> m{"intensity", "gt-ego", "drift", "mrpt-distance"};
+  return m;
+}
+
+std::string RunOptions::describe(const std::string& mode, const DriftParams& drift) {
+  if (mode == "intensity") return "this detector, own intensity ego-motion (no odometry)";
+  if (mode == "gt-ego") return "this detector, ground-truth ego-motion (upper bound)";
+  if (mode == "drift") return "this detector, drifting odometry (" + drift.toString() + ")";
+  if (mode == "mrpt-distance") return "MRPT CPointCloudFilterByDistance (defaults), ground-truth poses";
+  return mode;
+}
+
+RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
+  if (!RunOptions::modes().count(opts.mode)) throw EvaluationError("unknown mode '" + opts.mode + "'");
+  const bool needs_poses = opts.mode != "intensity";
+  if (needs_poses && seq.poses.empty())
+    throw EvaluationError("mode '" + opts.mode + "' needs ground-truth poses (" + seq.name + ".gt.tum)");
+  const core::LabelFile truth = core::LabelFile::read(seq.labels);
+  std::optional<core::LabelFile> instances;
+  std::optional<GroundTruthObjects> objects;
+  if (!seq.instances.empty() && !seq.objects.empty()) {
+    instances = core::LabelFile::read(seq.instances);
+    objects = GroundTruthObjects::read(seq.objects);
+  }
+  std::vector<core::StampedPose> poses;
+  if (needs_poses) poses = core::readTumFile(seq.poses);
+
+  RunResult res;
+  res.mode = opts.mode;
+  res.description = RunOptions::describe(opts.mode, opts.drift);
+  res.sequence = seq.name;
+  if (instances) res.objects.emplace(opts.min_object_points);
+  if (opts.mode != "mrpt-distance") res.timing.emplace();
+
+  dynobj::mrpt::LidarObservationStream stream(seq.rawlog, dynobj::mrpt::ObservationConverter(),
+                                              {opts.sensor_label, 0, std::numeric_limits<std::size_t>::max()});
+  core::DynamicObjectDetector detector(opts.params);
+  MrptDistanceFilter mrpt_filter;
+  DriftModel drift(opts.drift);
+  dynobj::mrpt::LidarObservationStream::Item item;
+  cv::Mat_<std::uint8_t> baseline_mask;
+  const core::StampedPose* prev_pose = nullptr;
+  std::size_t k = 0;
+  for (; k < opts.max_frames && stream.next(item); k++) {
+    const core::LidarFrame& f = item.frame;
+    if (k >= truth.sweeps.size() || truth.sweeps[k].timestamp_ns != f.timestamp_ns)
+      throw EvaluationError(seq.labels + ": no ground-truth sweep at t = " + std::to_string(f.timestamp_ns) +
+                            " ns (scan " + std::to_string(k) + ")");
+    if (truth.rows != f.rows() || truth.cols != f.cols())
+      throw EvaluationError(seq.labels + ": ground truth is " + std::to_string(truth.rows) + "x" +
+                            std::to_string(truth.cols) + " but the scans are " + std::to_string(f.rows()) +
+                            "x" + std::to_string(f.cols()));
+    const core::StampedPose* pose = nullptr;
+    std::optional<Eigen::Isometry3d> motion;
+    if (needs_poses) {
+      pose = core::findPose(poses, f.timestamp_ns);
+      if (!pose) throw EvaluationError(seq.poses + ": no pose at t = " + std::to_string(f.timestamp_ns) + " ns");
+      if (prev_pose) motion = prev_pose->pose.inverse() * pose->pose;
+      if (motion && opts.mode == "drift") motion = drift.corrupt(*motion);
+      prev_pose = pose;
+    }
+    const cv::Mat_<std::uint8_t>* predicted = nullptr;
+    const std::vector<core::TrackedObject>* tracked = nullptr;
+    double ms = -1;
+    if (opts.mode == "mrpt-distance") {
+      mrpt_filter.process(f, pose->pose, baseline_mask);
+      predicted = &baseline_mask;
+    } else {
+      const core::DetectionResult& r = detector.process(f, motion);
+      predicted = &r.dynamic;
+      tracked = &r.objects;
+      ms = r.timings.total;
+      res.timing->add(r.timings);
+      if (k > 0 && !r.ego_motion.ok) res.ego_failed++;
+    }
+    const std::vector<std::uint32_t> pred = core::pixelsOfMask(*predicted);
+    res.metrics.add(f.timestamp_ns, truth.sweeps[k].pixels, pred, cv::countNonZero(f.valid), ms);
+    if (res.objects) {
+      if (k >= instances->sweeps.size() || k >= objects->sweeps.size())
+        throw EvaluationError(seq.instances + ": fewer sweeps than the rawlog");
+      res.objects->add(instances->sweeps[k], pred, objects->sweeps[k]);
+    }
+    if (opts.overlay_sweeps.count(static_cast<int>(k)))
+      res.overlays.emplace_back(static_cast<int>(k),
+                                overlayImage(f, *predicted, maskOfPixels(truth.sweeps[k].pixels, f.rows(), f.cols()),
+                                             tracked ? *tracked : std::vector<core::TrackedObject>{}));
+    res.rows = f.rows();
+    res.cols = f.cols();
+    res.rate_hz = f.sensor.frequency;
+    if (opts.progress) opts.progress(k + 1);
+  }
+  if (k == 0) throw EvaluationError("no LiDAR observation in '" + seq.rawlog + "'");
+  return res;
+}
+
+}  // namespace dynobj::eval
