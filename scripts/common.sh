@@ -12,9 +12,10 @@ DYNOBJ_PACKAGES=(cmake make g++ libmrpt-dev mrpt-apps mrpt-common libopencv-dev 
 
 log() { printf '[dynobj] %s\n' "$*"; }
 
+# ensure_packages [extra packages...]
 ensure_packages() {
   local missing=() p
-  for p in "${DYNOBJ_PACKAGES[@]}"; do
+  for p in "${DYNOBJ_PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ ${#missing[@]} -eq 0 ]; then

@@ -5,7 +5,8 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
-ensure_packages
+# chromium: the HTML report of dynobj-eval is checked in a headless browser.
+ensure_packages chromium
 BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
 build_project "$BUILD_DIR" -DDYNOBJ_BUILD_TESTS=ON
 log "running tests"

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/ClusterAssociator.h"
 
+#include <algorithm>
+
 #include "dynobj/core/Config.h"
 #include "dynobj/core/Hungarian.h"
 
@@ -50,21 +52,37 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
   for (std::size_t m = 0; m < M; m++)
     for (std::size_t n = 0; n < N; n++)
       if ((current[m] - predicted[n]).squaredNorm() <= d2max) parent[find(m)] = find(M + n);
-  std::vector<std::vector<std::size_t>> rows(M + N), cols(M + N);
-  for (std::size_t m = 0; m < M; m++) rows[find(m)].push_back(m);
-  for (std::size_t n = 0; n < N; n++) cols[find(M + n)].push_back(n);
+  // Group rows and columns by component: (root, index) pairs sorted by root (two allocations,
+  // not one per component).
+  std::vector<std::pair<std::size_t, std::size_t>> rows, cols;
+  rows.reserve(M);
+  cols.reserve(N);
+  for (std::size_t m = 0; m < M; m++) rows.emplace_back(find(m), m);
+  for (std::size_t n = 0; n < N; n++) cols.emplace_back(find(M + n), n);
+  std::sort(rows.begin(), rows.end());
+  std::sort(cols.begin(), cols.end());
   std::vector<Eigen::Vector3d> cur, pred;
-  for (std::size_t root = 0; root < M + N; root++) {
-    if (rows[root].empty() || cols[root].empty()) continue;
-    cur.clear();
-    pred.clear();
-    for (std::size_t m : rows[root]) cur.push_back(current[m]);
-    for (std::size_t n : cols[root]) pred.push_back(predicted[n]);
-    const std::vector<int> a = solveAssignment(costMatrix(cur, pred));  // Eq. (10)-(13)
-    for (std::size_t i = 0; i < cur.size(); i++)
-      if (a[i] >= 0 && a[i] < static_cast<int>(pred.size()) &&
-          (cur[i] - pred[static_cast<std::size_t>(a[i])]).norm() <= p_.gate_distance)
-        out[rows[root][i]] = static_cast<int>(cols[root][static_cast<std::size_t>(a[i])]);
+  std::size_t r0 = 0, c0 = 0;
+  while (r0 < rows.size()) {
+    const std::size_t root = rows[r0].first;
+    std::size_t r1 = r0;
+    while (r1 < rows.size() && rows[r1].first == root) r1++;
+    while (c0 < cols.size() && cols[c0].first < root) c0++;
+    std::size_t c1 = c0;
+    while (c1 < cols.size() && cols[c1].first == root) c1++;
+    if (c1 > c0) {  // clusters with candidate tracks: solve this component (Eq. 10-13)
+      cur.clear();
+      pred.clear();
+      for (std::size_t i = r0; i < r1; i++) cur.push_back(current[rows[i].second]);
+      for (std::size_t j = c0; j < c1; j++) pred.push_back(predicted[cols[j].second]);
+      const std::vector<int> a = solveAssignment(costMatrix(cur, pred));
+      for (std::size_t i = 0; i < cur.size(); i++)
+        if (a[i] >= 0 && a[i] < static_cast<int>(pred.size()) &&
+            (cur[i] - pred[static_cast<std::size_t>(a[i])]).norm() <= p_.gate_distance)
+          out[rows[r0 + i].second] = static_cast<int>(cols[c0 + static_cast<std::size_t>(a[i])].second);
+    }
+    r0 = r1;
+    c0 = c1;
   }
   return out;
 }

@@ -32,7 +32,7 @@ void MovementParams::validate() const {
 
 MovementAnalyzer::MovementAnalyzer(const MovementParams& p) : p_(p) { p_.validate(); }
 
-MovementDecision MovementAnalyzer::analyse(const std::deque<WindowEntry>& window,
+MovementDecision MovementAnalyzer::analyse(const Window& window,
                                            const FrameChain& chain, const Cluster& cluster,
                                            double dt) const {
   MovementDecision d;

@@ -82,6 +82,7 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
       t.cov = Eigen::Vector4d(r, r, 4.0, 4.0).asDiagonal();
       t.z = c.z();
       t.cluster = static_cast<int>(m);
+      t.window.reserve(window_ + 1);
       t.window.emplace_back(frame, c);
       tracks_.push_back(std::move(t));
       seen.push_back(1);
@@ -102,7 +103,8 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
     t.cov = (Eigen::Matrix4d::Identity() - K * Hm) * t.cov;
     if (!p_.prediction) t.state.head<2>() = c.head<2>();  // the paper: no filtering
     t.window.emplace_back(frame, c);
-    while (t.window.size() > window_) t.window.pop_front();
+    if (t.window.size() > window_)
+      t.window.erase(t.window.begin(), t.window.begin() + static_cast<std::ptrdiff_t>(t.window.size() - window_));
   }
   const int max_missed = p_.prediction ? p_.max_missed : 0;
   std::vector<Track> kept;

@@ -96,13 +96,13 @@ TEST(MovementAnalyzer, MovingClusterFlaggedAfterKFramesStaticWithJitterNot) {
   const FrameChain chain = walkingChain(10);
   std::mt19937 rng(7);
   std::normal_distribution<double> jitter(0, 0.05);
-  std::deque<WindowEntry> moving, still;
+  Window moving, still;
   for (long i = 0; i < 10; i++) {
     // World: the object moves +0.1 m/frame along Y; the robot moves +0.1 m/frame along X, so in the
     // sensor frame of frame i the world point (x, y) appears at (x - 0.1 i, y).
     moving.emplace_back(i, V3(5 - 0.1 * i, 0.1 * i, 0));
     still.emplace_back(i, V3(3 - 0.1 * i + jitter(rng), 2 + jitter(rng), 0));
-    if (moving.size() > 5) moving.pop_front(), still.pop_front();
+    if (moving.size() > 5) moving.erase(moving.begin()), still.erase(still.begin());
     const auto dm = m.analyse(moving, chain, compact(), 0.1);
     const auto ds = m.analyse(still, chain, compact(), 0.1);
     EXPECT_EQ(dm.enough_history, i >= 4);
@@ -117,7 +117,7 @@ TEST(MovementAnalyzer, MovingClusterFlaggedAfterKFramesStaticWithJitterNot) {
 TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
   const MovementAnalyzer m;  // window 5
   const FrameChain chain = walkingChain(5);
-  std::deque<WindowEntry> w;
+  Window w;
   // A wall along X beside the robot: its visible part (and centroid) slides forward with it.
   for (long i = 0; i < 5; i++) w.emplace_back(i, V3(2.0, 3.0, 0));  // same place in each sensor frame
   Cluster wall;
@@ -137,7 +137,7 @@ TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
 TEST(MovementAnalyzer, UnreliableEgoMotionInTheWindowGivesNoVerdict) {
   FrameChain chain(16);
   for (long i = 0; i < 6; i++) chain.push(i, Eigen::Isometry3d::Identity(), i != 3);
-  std::deque<WindowEntry> w;
+  Window w;
   for (long i = 1; i < 6; i++) w.emplace_back(i, V3(0.2 * i, 0, 0));
   const auto d = MovementAnalyzer().analyse(w, chain, compact(), 0.1);
   EXPECT_FALSE(d.enough_history);

@@ -12,8 +12,8 @@
 
 #include <Eigen/Core>
 
-#include <deque>
 #include <utility>
+#include <vector>
 
 #include "dynobj/core/Clusterer.h"
 #include "dynobj/core/FrameChain.h"
@@ -36,6 +36,8 @@ struct MovementParams : public StageParams {
 
 /// One observation of a track: the frame index and the cluster centroid in that frame.
 using WindowEntry = std::pair<long, Eigen::Vector3d>;
+/// A track's sliding window, oldest first (a vector: k is small, and it is allocated once per track).
+using Window = std::vector<WindowEntry>;
 
 struct MovementDecision {
   bool enough_history = false;  ///< a full window of reliable frames
@@ -58,7 +60,7 @@ class MovementAnalyzer {
 
   /// `window`: the track's observations, oldest first (the last k are used); `cluster`: its
   /// current cluster (same frame as the last entry); `dt`: seconds between frames.
-  MovementDecision analyse(const std::deque<WindowEntry>& window, const FrameChain& chain,
+  MovementDecision analyse(const Window& window, const FrameChain& chain,
                            const Cluster& cluster, double dt) const;
 
   const MovementParams& params() const { return p_; }

@@ -7,7 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include <deque>
 #include <vector>
 
 #include "dynobj/core/Clusterer.h"
@@ -34,7 +33,7 @@ struct Track {
   int age = 0;       ///< frames since the track was born
   int missed = 0;    ///< consecutive frames without a cluster
   int cluster = -1;  ///< index of this frame's cluster, -1 when unseen
-  std::deque<WindowEntry> window;  ///< observations (frame, centroid in that frame), bounded
+  Window window;  ///< observations (frame, centroid in that frame), at most k + 1
   Eigen::Vector4d state{0, 0, 0, 0};  ///< x, y, vx, vy in the current frame
   Eigen::Matrix4d cov = Eigen::Matrix4d::Identity();
   double z = 0;      ///< last observed centroid height
