@@ -84,6 +84,8 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> drift("", "drift", "Drift of the injected odometry: sigma_xy, sigma_yaw_deg, "
                                      "bias_scale, bias_yaw_deg, seed (e.g. bias_yaw_deg=0.1)", false, "", "k=v,...", cmd);
   TCLAP::ValueArg<int> overlays("", "overlays", "Overlay images per run (evenly spaced sweeps)", false, 3, "N", cmd);
+  TCLAP::ValueArg<std::string> overlay_list("", "overlay-sweeps", "Overlay images of these sweeps (instead of "
+                                            "--overlays)", false, "", "i,j,...", cmd);
   TCLAP::ValueArg<int> min_points("", "min-object-points", "Object recall counts objects with at least this "
                                   "many points in a sweep", false, 10, "N", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
@@ -131,6 +133,21 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("--modes: unknown mode '" + m + "' (intensity, gt-ego, drift, mrpt-distance)");
   const std::size_t n_sweeps = std::min(opts.max_frames, core::LabelFile::read(seq.labels).sweeps.size());
   opts.overlay_sweeps = overlaySweeps(std::max(0, overlays.getValue()), n_sweeps);
+  if (overlay_list.isSet()) {
+    opts.overlay_sweeps.clear();
+    for (const auto& item : splitList(overlay_list.getValue())) {
+      std::size_t used = 0;
+      int k = -1;
+      try {
+        k = std::stoi(item, &used);
+      } catch (const std::exception&) {
+      }
+      if (used != item.size() || k < 0 || static_cast<std::size_t>(k) >= n_sweeps)
+        throw std::invalid_argument("--overlay-sweeps: '" + item + "' is not a sweep index in [0, " +
+                                    std::to_string(n_sweeps - 1) + "]");
+      opts.overlay_sweeps.insert(k);
+    }
+  }
 
   std::vector<eval::RunResult> runs;
   const bool tty = isatty(STDERR_FILENO) != 0;

@@ -84,6 +84,9 @@ void computeClusterShape(const LidarFrame& f, Cluster& c) {
     hi = std::max(hi, t);
   }
   c.length = c.pixels.empty() ? 0.0 : hi - lo;
+  const Eigen::Vector3d axis(c.main_direction.x(), c.main_direction.y(), 0);
+  c.end_a = c.pixels.empty() ? c.centroid : Eigen::Vector3d(c.centroid + lo * axis);
+  c.end_b = c.pixels.empty() ? c.centroid : Eigen::Vector3d(c.centroid + hi * axis);
 }
 
 Clusterer::Clusterer(const ClusteringParams& p) : p_(p) { p_.validate(); }

@@ -160,8 +160,11 @@ const DetectionResult& DynamicObjectDetector::process(const LidarFrame& frame,
     MovementDecision d = movement_.analyse(tr.window, chain_, c, dt);
     if (d.moving()) {  // beyond the paper: was the space it occupies now free at the window start?
       const long past = std::max(chain_.oldest(), frame_index_ - params_.free_space.lookback);
-      d.static_surface = !free_space_.evidence(frame, frame_index_, c, past, chain_)
-                              .supportsMotion(params_.free_space);
+      const FreeSpaceEvidence e = free_space_.evidence(frame, frame_index_, c, past, chain_);
+      // A long object exempted from Eq. (23) as a rigid mover (a car) must prove its motion: a
+      // background strip framed by moving occluders also "moves" rigidly, but no free space
+      // was ever seen where it is.
+      d.static_surface = d.rigid ? !e.provesMotion(params_.free_space) : !e.supportsMotion(params_.free_space);
     }
     tracks_.decide(tr, d);
     if (tr.dynamic) {

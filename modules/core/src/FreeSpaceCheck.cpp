@@ -30,6 +30,11 @@ bool FreeSpaceEvidence::supportsMotion(const FreeSpaceParams& p) const {
   return free >= p.min_free_ratio * decisive;
 }
 
+bool FreeSpaceEvidence::provesMotion(const FreeSpaceParams& p) const {
+  const int decisive = free + occupied;
+  return decisive >= p.min_evidence && free >= p.min_free_ratio * decisive;
+}
+
 FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
     : p_(p), history_(std::max<std::size_t>(history, 2)) {
   p_.validate();

@@ -17,6 +17,7 @@ void MovementParams::visit(ParamVisitor& v) {
   v.degrees("long_object_angle", long_object_angle);
   v.value("long_object_elongation", long_object_elongation);
   v.value("long_object_length", long_object_length);
+  v.value("rigid_tolerance", rigid_tolerance);
   v.value("max_speed", max_speed);
 }
 
@@ -27,10 +28,28 @@ void MovementParams::validate() const {
   requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
   requireInRange("long_object_elongation", long_object_elongation, 1, 1000);
   requireInRange("long_object_length", long_object_length, 0, 1000);
+  requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
   requirePositive("max_speed", max_speed);
 }
 
 MovementAnalyzer::MovementAnalyzer(const MovementParams& p) : p_(p) { p_.validate(); }
+
+bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b, const Eigen::Isometry3d& T_ab,
+                                   const Eigen::Vector3d& v, double displacement) const {
+  // Departure from the paper: Eq. (23) alone rejects every elongated object moving along its
+  // axis, cars included. A wall sliding into view has one end fixed (its real end, or an
+  // occluding edge) while the other follows the view; a car's two ends both move as its
+  // centroid does. Ends are compared along the motion direction v, in the window's first frame.
+  if (p_.rigid_tolerance <= 0) return false;
+  if ((a.end_b - a.end_a).norm() < p_.long_object_length || (b.end_b - b.end_a).norm() < p_.long_object_length)
+    return false;  // ends unknown (or not an elongated cluster then): no exemption
+  const auto along = [&](const Eigen::Vector3d& p) { return p.head<2>().dot(v.head<2>().normalized()); };
+  double a0 = along(a.end_a), a1 = along(a.end_b), b0 = along(T_ab * b.end_a), b1 = along(T_ab * b.end_b);
+  if (a0 > a1) std::swap(a0, a1);
+  if (b0 > b1) std::swap(b0, b1);
+  const double tol = p_.rigid_tolerance * displacement;
+  return std::abs((b0 - a0) - displacement) <= tol && std::abs((b1 - a1) - displacement) <= tol;
+}
 
 MovementDecision MovementAnalyzer::analyse(const Window& window,
                                            const FrameChain& chain, const Cluster& cluster,
@@ -38,7 +57,7 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
   MovementDecision d;
   const auto k = static_cast<std::size_t>(p_.window);
   if (window.size() < k) return d;
-  const long first = window[window.size() - k].first, last = window.back().first;
+  const long first = window[window.size() - k].frame, last = window.back().frame;
   if (!chain.contains(first) || !chain.reliable(first, last)) return d;
   d.enough_history = true;
 
@@ -46,7 +65,7 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
   std::vector<Eigen::Vector3d> cw;
   cw.reserve(k);
   for (std::size_t j = window.size() - k; j < window.size(); j++)
-    cw.push_back(chain.between(first, window[j].first) * window[j].second);
+    cw.push_back(chain.between(first, window[j].frame) * window[j].centroid);
 
   d.displacement = (cw.back() - cw.front()).norm();                   // Eq. (19)
   for (std::size_t j = 1; j < cw.size(); j++) d.path += (cw[j] - cw[j - 1]).norm();  // Eq. (20)
@@ -63,7 +82,8 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
     const Eigen::Vector2d vh = v.head<2>(), Vh = V.head<2>();
     if (vh.norm() > 1e-9 && Vh.norm() > 1e-9) {
       d.angle = std::acos(std::min(1.0, std::abs(vh.normalized().dot(Vh.normalized()))));  // Eq. (23)
-      d.long_object = d.angle < p_.long_object_angle;
+      d.rigid = rigidMotion(window[window.size() - k], window.back(), chain.between(first, last), v, d.displacement);
+      d.long_object = d.angle < p_.long_object_angle && !d.rigid;
     }
   }
   return d;

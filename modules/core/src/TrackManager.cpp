@@ -83,7 +83,7 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
       t.z = c.z();
       t.cluster = static_cast<int>(m);
       t.window.reserve(window_ + 1);
-      t.window.emplace_back(frame, c);
+      t.window.emplace_back(frame, c, clusters[m].end_a, clusters[m].end_b);
       tracks_.push_back(std::move(t));
       seen.push_back(1);
       continue;
@@ -102,7 +102,7 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
     t.state += K * (c.head<2>() - t.state.head<2>());
     t.cov = (Eigen::Matrix4d::Identity() - K * Hm) * t.cov;
     if (!p_.prediction) t.state.head<2>() = c.head<2>();  // the paper: no filtering
-    t.window.emplace_back(frame, c);
+    t.window.emplace_back(frame, c, clusters[m].end_a, clusters[m].end_b);
     if (t.window.size() > window_)
       t.window.erase(t.window.begin(), t.window.begin() + static_cast<std::ptrdiff_t>(t.window.size() - window_));
   }

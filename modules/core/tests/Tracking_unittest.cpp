@@ -134,6 +134,39 @@ TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
   EXPECT_TRUE(m.analyse(w, chain, across, 0.1).moving());
 }
 
+TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
+  const MovementAnalyzer m;
+  const FrameChain chain = walkingChain(5);  // the robot walks +0.1 m/frame along X
+  Cluster car;
+  car.main_direction = Eigen::Vector2d(1, 0);
+  car.elongation = 3;
+  car.length = 4;
+  // A 4 m car drives +0.3 m/frame along X (its axis): in sensor frame i its centroid is at
+  // (2 + 0.2 i, 3) and its ends 2 m either side. Both ends move with the centroid.
+  Window w;
+  for (long i = 0; i < 5; i++)
+    w.emplace_back(i, V3(2 + 0.2 * i, 3, 0), V3(0.2 * i, 3, 0), V3(4 + 0.2 * i, 3, 0));
+  const auto d = m.analyse(w, chain, car, 0.1);
+  EXPECT_NEAR(d.displacement, 1.2, 1e-9);
+  EXPECT_NEAR(d.angle, 0.0, 1e-9);
+  EXPECT_TRUE(d.rigid);
+  EXPECT_FALSE(d.long_object);
+  EXPECT_TRUE(d.moving());
+  // A wall whose real end stays at world x = -1 while its visible part grows with the robot's
+  // view (other end at world x = 3 + 0.2 i): its centroid slides too, but one end is fixed.
+  Window wall;
+  for (long i = 0; i < 5; i++)
+    wall.emplace_back(i, V3(1, 3, 0), V3(-1 - 0.1 * i, 3, 0), V3(3 + 0.1 * i, 3, 0));
+  const auto dw = m.analyse(wall, chain, car, 0.1);
+  EXPECT_TRUE(dw.candidate);
+  EXPECT_FALSE(dw.rigid);
+  EXPECT_TRUE(dw.long_object);
+  // rigid_tolerance = 0 restores the paper's Eq. (23) for every elongated cluster.
+  MovementParams paper;
+  paper.rigid_tolerance = 0;
+  EXPECT_TRUE(MovementAnalyzer(paper).analyse(w, chain, car, 0.1).long_object);
+}
+
 TEST(MovementAnalyzer, UnreliableEgoMotionInTheWindowGivesNoVerdict) {
   FrameChain chain(16);
   for (long i = 0; i < 6; i++) chain.push(i, Eigen::Isometry3d::Identity(), i != 3);

@@ -39,6 +39,7 @@ struct Cluster {
   Eigen::Vector2d main_direction{1, 0};  ///< Eq. (22): horizontal PCA main axis (unit)
   double elongation = 1.0;  ///< sqrt(lambda1 / lambda2) of the horizontal covariance
   double length = 0.0;      ///< extent along the main axis [m]
+  Eigen::Vector3d end_a{0, 0, 0}, end_b{0, 0, 0};  ///< the two ends along the main axis (z = centroid's)
 };
 
 /// Fills centroid, bounds and PCA fields of `c` from its pixels.

@@ -35,7 +35,10 @@ struct FreeSpaceParams : public StageParams {
 
 struct FreeSpaceEvidence {
   int free = 0, occupied = 0, unknown = 0;
+  /// Not contradicted: enough free evidence, or too little evidence either way.
   bool supportsMotion(const FreeSpaceParams& p) const;
+  /// Positively shown: at least min_evidence decisive points, enough of them free.
+  bool provesMotion(const FreeSpaceParams& p) const;
 };
 
 class FreeSpaceCheck {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <utility>
 #include <vector>
@@ -28,14 +29,25 @@ struct MovementParams : public StageParams {
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
   double long_object_elongation = 1.5;  ///< only clusters at least this elongated ...
   double long_object_length = 0.5;      ///< ... and this long [m] are tested for Eq. (23)
+  double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
+                                 ///< (within this fraction of f) is a rigid mover (a car), not a
+                                 ///< wall sliding into view: exempt from Eq. (23); 0 = never
   double max_speed = 30.0;           ///< [m/s] faster is an association error, not motion
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 
-/// One observation of a track: the frame index and the cluster centroid in that frame.
-using WindowEntry = std::pair<long, Eigen::Vector3d>;
+/// One observation of a track, in the sensor frame of its own frame: the cluster centroid and the
+/// two ends of the cluster along its horizontal main axis (both = centroid when unknown).
+struct WindowEntry {
+  long frame = 0;
+  Eigen::Vector3d centroid{0, 0, 0};
+  Eigen::Vector3d end_a{0, 0, 0}, end_b{0, 0, 0};
+  WindowEntry(long f, const Eigen::Vector3d& c) : frame(f), centroid(c), end_a(c), end_b(c) {}
+  WindowEntry(long f, const Eigen::Vector3d& c, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+      : frame(f), centroid(c), end_a(a), end_b(b) {}
+};
 /// A track's sliding window, oldest first (a vector: k is small, and it is allocated once per track).
 using Window = std::vector<WindowEntry>;
 
@@ -48,6 +60,7 @@ struct MovementDecision {
   bool candidate = false;       ///< f > epsilon_d
   bool drift = false;           ///< f / f_a < epsilon_o
   bool long_object = false;     ///< elongated and moving along itself
+  bool rigid = false;           ///< elongated, and both its ends moved with the centroid
   bool static_surface = false;  ///< set by FreeSpaceCheck: its space was occupied already
   bool moving() const {
     return enough_history && candidate && !drift && !long_object && !static_surface;
@@ -66,6 +79,11 @@ class MovementAnalyzer {
   const MovementParams& params() const { return p_; }
 
  private:
+  /// Both ends of `b` (the last entry) moved from those of `a` (the first) by the centroid's
+  /// displacement along v; T_ab maps b's frame into a's.
+  bool rigidMotion(const WindowEntry& a, const WindowEntry& b, const Eigen::Isometry3d& T_ab,
+                   const Eigen::Vector3d& v, double displacement) const;
+
   MovementParams p_;
 };
 
