@@ -35,7 +35,7 @@ struct FreeSpaceParams {
   double margin_rel = 0.05;  ///< ... plus this share of the voxel's range
   int window = 1;            ///< [px] half-size of the window whose nearest return must be beyond
   int min_views = 2;         ///< scans that must see through a voxel to remove it
-  double ratio = 2.0;        ///< and see-through views >= ratio * hit views
+  double ratio = 4.0;        ///< and see-through views >= ratio * hit views
   double min_range = 0.0;    ///< [m] voxels nearer to the sensor than this give no evidence
 };
 

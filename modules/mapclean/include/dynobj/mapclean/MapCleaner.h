@@ -61,7 +61,7 @@ struct MapCleanParams : public core::StageParams {
   double free_space_margin_rel = 0.05;  ///< share of the voxel's range
   int free_space_window = 1;            ///< [px] half-size of the window
   int free_space_min_views = 2;
-  double free_space_ratio = 2.0;
+  double free_space_ratio = 4.0;
 
   FreeSpaceParams freeSpace() const;
 
