@@ -32,8 +32,10 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<double> pose_tol("", "pose-tolerance", "Timestamp matching tolerance [s]", false, 0.001, "s", cmd);
   TCLAP::ValueArg<std::string> config("c", "config",
                                       "INI: detector sections (as dynobj.ini) and [mapclean] (voxel_size, "
-                                      "second_pass, box_margin, min_range, dynamic_vote)", false, "", "file.ini", cmd);
+                                      "second_pass, box_margin, min_range, dynamic_vote, free_space_*)", false, "", "file.ini", cmd);
   TCLAP::ValueArg<double> voxel("", "voxel", "Map voxel size [m] (0 = every point)", false, -1, "m", cmd);
+  TCLAP::SwitchArg level("", "level-poses",
+                         "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
   TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
   TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (PCD folders, point clouds)", false, "",
                                       "file.ini", cmd);
@@ -62,6 +64,7 @@ int run(int argc, char** argv) {
   }
   if (voxel.isSet()) o.clean.voxel_size = voxel.getValue();
   if (single.isSet()) o.clean.second_pass = false;
+  if (level.isSet()) o.clean.level_poses = true;
   o.clean.validate();
   if (sensor.isSet()) o.scan_options.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
   o.scan_options.sensor_label = label.getValue();
@@ -85,12 +88,13 @@ int run(int argc, char** argv) {
   };
   const auto s = dynobj::mapclean::runMapClean(o, progress);
   if (tty) std::cerr << "\n";
-  std::printf("dynobj-mapclean: %zu scans, poses: %s, %s\n", s.scans, s.poses.c_str(),
+  std::printf("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
+              o.clean.level_poses ? " (leveled with the floor)" : "",
               o.clean.second_pass ? "two passes" : "single pass");
   std::printf("  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
-              "dynamic, %zu points added by the second pass, %zu voxels by the vote\n",
+              "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space check\n",
               s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks, s.backfilled,
-              s.voted);
+              s.voted, s.seen_through);
   if (o.write_simplemap) std::printf("  cleaned simplemap: %zu keyframes\n", s.keyframes);
   if (!o.export_kth.empty()) std::printf("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,
                 o.export_kth.c_str());

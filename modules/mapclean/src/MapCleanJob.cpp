@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "dynobj/mapclean/AtomicFile.h"
+#include "dynobj/mapclean/FreeSpaceCheck.h"
+#include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
 #include "dynobj/mapclean/MrptOutputs.h"
 #include "dynobj/mapclean/PointCloudIO.h"
@@ -115,10 +117,14 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   };
 
   std::vector<FrameRecord> records;  // pixel lists dropped in single-pass mode
+  GroundLeveler leveler;
   Scan scan;
   while (source->next(scan)) {
     const auto& r = detector.process(scan.frame);
-    records.push_back(cleaner.record(r, poses->pose(scan, r.ego_motion)));
+    Eigen::Isometry3d pose = poses->pose(scan, r.ego_motion);
+    if (o.clean.level_poses)
+      if (const auto ground = leveler.fit(scan.frame)) pose = leveler.level(pose, *ground);
+    records.push_back(cleaner.record(r, pose));
     if (gt_labels) gt_labels->mask(scan);  // a mismatch fails now, before any output exists
     if (!two_pass) {
       mapScan(scan, records.back());
@@ -140,6 +146,18 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   }
 
   sum.voted = cleaner.finish();
+  if (o.clean.free_space_check && o.clean.voxel_size > 0) {  // a further streaming pass
+    FreeSpaceCheck check(o.clean.freeSpace(), cleaner.staticMap().voxels());
+    source->rewind();
+    const auto stride = static_cast<std::size_t>(o.clean.free_space_stride);
+    for (std::size_t k = 0; k < records.size(); k++) {
+      if (!source->next(scan) || scan.frame.timestamp_ns != records[k].timestamp_ns)
+        throw std::runtime_error(source->describe() + " changed between passes");
+      if (k % stride == 0) check.addScan(scan.frame, records[k].sensor_pose);
+      report("free space", k + 1, records.size());
+    }
+    sum.seen_through = cleaner.moveToDynamic(check.seenThrough());
+  }
   const std::vector<MapPoint> st = cleaner.staticMap().points(), dy = cleaner.dynamicMap().points();
   sum.points_static = cleaner.staticMap().pointsInserted();
   sum.points_dynamic = cleaner.dynamicMap().pointsInserted();

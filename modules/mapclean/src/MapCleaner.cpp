@@ -4,6 +4,8 @@
 #include <dynobj/core/Config.h>
 #include <dynobj/core/LabelFile.h>
 
+#include <algorithm>
+
 namespace dynobj::mapclean {
 
 void MapCleanParams::visit(core::ParamVisitor& v) {
@@ -12,6 +14,14 @@ void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("box_margin", box_margin);
   v.value("min_range", min_range);
   v.value("dynamic_vote", dynamic_vote);
+  v.value("level_poses", level_poses);
+  v.value("free_space_check", free_space_check);
+  v.value("free_space_stride", free_space_stride);
+  v.value("free_space_margin", free_space_margin);
+  v.value("free_space_margin_rel", free_space_margin_rel);
+  v.value("free_space_window", free_space_window);
+  v.value("free_space_min_views", free_space_min_views);
+  v.value("free_space_ratio", free_space_ratio);
 }
 
 void MapCleanParams::validate() const {
@@ -19,6 +29,23 @@ void MapCleanParams::validate() const {
   core::requireInRange("box_margin", box_margin, 0.0, 5.0);
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
   core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
+  core::requireInRange("free_space_stride", free_space_stride, 1, 1000000);
+  core::requireInRange("free_space_margin", free_space_margin, 0.0, 100.0);
+  core::requireInRange("free_space_margin_rel", free_space_margin_rel, 0.0, 10.0);
+  core::requireInRange("free_space_window", free_space_window, 0, 100);
+  core::requireInRange("free_space_min_views", free_space_min_views, 1, 65535);
+  core::requireInRange("free_space_ratio", free_space_ratio, 0.0, 1000.0);
+}
+
+FreeSpaceParams MapCleanParams::freeSpace() const {
+  FreeSpaceParams f;
+  f.margin = free_space_margin;
+  f.margin_rel = free_space_margin_rel;
+  f.window = free_space_window;
+  f.min_views = free_space_min_views;
+  f.ratio = free_space_ratio;
+  f.min_range = min_range;
+  return f;
 }
 
 namespace {
@@ -81,6 +108,13 @@ std::size_t MapCleaner::finish() {
   if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
   return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static) {
     return static_cast<double>(n_static) * p_.dynamic_vote > static_cast<double>(dynamic_.countAt(key));
+  });
+}
+
+std::size_t MapCleaner::moveToDynamic(const std::vector<std::uint64_t>& keys) {
+  if (keys.empty()) return 0;
+  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t) {
+    return !std::binary_search(keys.begin(), keys.end(), key);
   });
 }
 

@@ -68,4 +68,15 @@ std::vector<MapPoint> VoxelMap::points() const {
   return out;
 }
 
+std::vector<VoxelCentre> VoxelMap::voxels() const {
+  std::vector<VoxelCentre> out;
+  out.reserve(cells_.size());
+  for (const auto& [key, c] : cells_) {
+    const double n = c.n;
+    out.push_back({key, static_cast<float>(c.sx / n), static_cast<float>(c.sy / n), static_cast<float>(c.sz / n)});
+  }
+  std::sort(out.begin(), out.end(), [](const VoxelCentre& a, const VoxelCentre& b) { return a.key < b.key; });
+  return out;
+}
+
 }  // namespace dynobj::mapclean

@@ -20,6 +20,7 @@
 #include <set>
 #include <vector>
 
+#include "dynobj/mapclean/FreeSpaceCheck.h"
 #include "dynobj/mapclean/VoxelMap.h"
 
 namespace dynobj::mapclean {
@@ -49,6 +50,20 @@ struct MapCleanParams : public core::StageParams {
   /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
   /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
   double dynamic_vote = 1.0;
+  /// Free-space check (FreeSpaceCheck.h) of the static map after the vote, against every
+  /// free_space_stride-th scan (a further streaming pass over the input; needs voxel_size > 0).
+  bool free_space_check = true;
+  /// Level every pose with the scan's floor (GroundLeveler.h): roll, pitch, height from the
+  /// ground plane; for planar / drifting pose sources on a level floor. Off: assumes nothing.
+  bool level_poses = false;
+  int free_space_stride = 2;
+  double free_space_margin = 0.3;       ///< [m]
+  double free_space_margin_rel = 0.05;  ///< share of the voxel's range
+  int free_space_window = 1;            ///< [px] half-size of the window
+  int free_space_min_views = 2;
+  double free_space_ratio = 4.0;
+
+  FreeSpaceParams freeSpace() const;
 
   void visit(core::ParamVisitor& v) override;
   void validate() const override;
@@ -87,6 +102,9 @@ class MapCleaner {
 
   /// After the last scan: applies the voxel vote. Returns the voxels moved.
   std::size_t finish();
+  /// Moves the static voxels with these keys (ascending, e.g. FreeSpaceCheck::seenThrough()) to
+  /// the dynamic map. Returns how many moved.
+  std::size_t moveToDynamic(const std::vector<std::uint64_t>& keys);
 
   const VoxelMap& staticMap() const { return static_; }
   const VoxelMap& dynamicMap() const { return dynamic_; }

@@ -16,6 +16,12 @@ struct MapPoint {
   float x = 0, y = 0, z = 0, intensity = 0;
 };
 
+/// An occupied voxel: its key (VoxelMap::keyOf) and the centroid of its points.
+struct VoxelCentre {
+  std::uint64_t key = 0;
+  float x = 0, y = 0, z = 0;
+};
+
 class VoxelMap {
  public:
   /// `voxel_size` [m] >= 0 (0 = keep every point). Throws std::invalid_argument when negative.
@@ -31,6 +37,9 @@ class VoxelMap {
   /// The map's points: voxel centroids ordered by voxel index (deterministic), or every inserted
   /// point in insertion order with voxel size 0.
   std::vector<MapPoint> points() const;
+
+  /// Every occupied voxel (key, centroid), ordered by key. Empty with voxel size 0.
+  std::vector<VoxelCentre> voxels() const;
 
   /// Voxel index of a point, packed (21 bits per axis). Throws std::out_of_range beyond
   /// +-2^20 voxels from the origin. Only for voxel size > 0.

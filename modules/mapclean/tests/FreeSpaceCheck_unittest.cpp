@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/mapclean/FreeSpaceCheck.h>
+#include <dynobj/mapclean/MapCleaner.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "FrameFixture.h"
+
+namespace mc = dynobj::mapclean;
+
+namespace {
+
+// The tiny sensor: rows at +15, +5, -5, -15 deg; 8 columns of 45 deg, column c centred on
+// azimuth -180 + 22.5 + 45 c deg.
+cv::Vec3f beam(int row, int col, float range) {
+  const double el = (15.0 - 10.0 * row) * M_PI / 180.0, az = (-180.0 + 22.5 + 45.0 * col) * M_PI / 180.0;
+  return cv::Vec3f(static_cast<float>(range * std::cos(el) * std::cos(az)),
+                   static_cast<float>(range * std::cos(el) * std::sin(az)), static_cast<float>(range * std::sin(el)));
+}
+
+/// Every pixel returns at `range`, except the overrides (range <= 0: no return).
+dynobj::core::LidarFrame frameAt(float range, std::vector<std::pair<std::pair<int, int>, float>> overrides = {}) {
+  std::vector<std::pair<std::pair<int, int>, cv::Vec3f>> pts;
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 8; c++) {
+      float rg = range;
+      for (const auto& [rc, v] : overrides)
+        if (rc == std::pair{r, c}) rg = v;
+      if (rg > 0) pts.push_back({{r, c}, beam(r, c, rg)});
+    }
+  return mc::test::tinyFrame(pts);
+}
+
+mc::FreeSpaceParams params() {
+  mc::FreeSpaceParams p;
+  p.margin = 0.3;
+  p.margin_rel = 0.05;  // tolerance at 5 m: 0.55 m
+  p.window = 1;
+  p.min_views = 2;
+  p.ratio = 2.0;
+  return p;
+}
+
+const Eigen::Isometry3d kOrigin = Eigen::Isometry3d::Identity();
+
+/// A voxel at 5 m in the middle of pixel (2, 4).
+std::vector<mc::VoxelCentre> oneVoxel() {
+  const cv::Vec3f v = beam(2, 4, 5.f);
+  return {{42, v[0], v[1], v[2]}};
+}
+
+}  // namespace
+
+TEST(FreeSpaceCheck, AVoxelSeenThroughByLaterScansIsRemoved) {
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  check.addScan(frameAt(5.f), kOrigin);   // a person stood there: a hit
+  check.addScan(frameAt(10.f), kOrigin);  // gone: every beam reaches the wall behind
+  EXPECT_TRUE(check.seenThrough().empty());  // one see-through view is not enough (min_views 2)
+  check.addScan(frameAt(10.f), kOrigin);
+  EXPECT_EQ(check.hitViews(0), 1);
+  EXPECT_EQ(check.freeViews(0), 2);
+  EXPECT_EQ(check.seenThrough(), (std::vector<std::uint64_t>{42}));
+}
+
+TEST(FreeSpaceCheck, EarlierScansCountToo) {
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  check.addScan(frameAt(10.f), kOrigin);
+  check.addScan(frameAt(10.f), kOrigin);
+  check.addScan(frameAt(5.f), kOrigin);
+  EXPECT_EQ(check.seenThrough(), (std::vector<std::uint64_t>{42}));
+}
+
+TEST(FreeSpaceCheck, AWallVoxelSeenAtAGrazingAngleIsKept) {
+  // The pixel itself ends 1 m beyond the voxel, but its neighbour (same row, next column) hits
+  // the same wall at 4.9 m: the wall recedes within the beam. The window's nearest return is not
+  // beyond the voxel, so no see-through view.
+  const auto grazing = frameAt(6.f, {{{2, 3}, 4.9f}});
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  for (int i = 0; i < 4; i++) check.addScan(grazing, kOrigin);
+  EXPECT_EQ(check.freeViews(0), 0);
+  EXPECT_TRUE(check.seenThrough().empty());
+  auto no_window = params();  // without the window the same views would remove it
+  no_window.window = 0;
+  mc::FreeSpaceCheck naive(no_window, oneVoxel());
+  for (int i = 0; i < 4; i++) naive.addScan(grazing, kOrigin);
+  EXPECT_EQ(naive.seenThrough().size(), 1u);
+}
+
+TEST(FreeSpaceCheck, ReturnsWithinTheMarginAreHitsNotSeeThrough) {
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  check.addScan(frameAt(5.5f), kOrigin);  // 0.5 m beyond: within 0.3 + 5 % of 5 m
+  check.addScan(frameAt(5.5f), kOrigin);
+  EXPECT_EQ(check.freeViews(0), 0);
+  EXPECT_EQ(check.hitViews(0), 2);
+}
+
+TEST(FreeSpaceCheck, OccludedOrMissingReturnsGiveNoEvidence) {
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  check.addScan(frameAt(3.f), kOrigin);                 // something in front hides the voxel
+  check.addScan(frameAt(10.f, {{{2, 4}, 0.f}}), kOrigin);  // no return in its pixel
+  EXPECT_EQ(check.freeViews(0), 0);
+  EXPECT_EQ(check.hitViews(0), 0);
+}
+
+TEST(FreeSpaceCheck, StaticVoxelsHitOftenAreKept) {
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  for (int i = 0; i < 3; i++) check.addScan(frameAt(5.f), kOrigin);
+  for (int i = 0; i < 5; i++) check.addScan(frameAt(10.f), kOrigin);  // 5 < ratio 2 x 3 hits
+  EXPECT_TRUE(check.seenThrough().empty());
+  check.addScan(frameAt(10.f), kOrigin);  // 6 >= 2 x 3
+  EXPECT_EQ(check.seenThrough().size(), 1u);
+}
+
+TEST(FreeSpaceCheck, UsesTheScanPose) {
+  // The voxel is 5 m along +x of the world; the sensor stands 2 m further back along x.
+  const cv::Vec3f v = beam(2, 4, 5.f);
+  Eigen::Isometry3d back = Eigen::Isometry3d::Identity();
+  back.translation() = Eigen::Vector3d(-2.0 * v[0] / 5.0, -2.0 * v[1] / 5.0, -2.0 * v[2] / 5.0);
+  mc::FreeSpaceCheck check(params(), oneVoxel());
+  check.addScan(frameAt(7.f), back);  // 7 m from there: the voxel itself
+  check.addScan(frameAt(12.f), back);
+  EXPECT_EQ(check.hitViews(0), 1);
+  EXPECT_EQ(check.freeViews(0), 1);
+}
+
+TEST(MapCleaner, MoveToDynamicMovesTheGivenVoxels) {
+  mc::MapCleanParams p;
+  p.voxel_size = 1.0;
+  mc::MapCleaner cleaner(p);
+  const auto f = mc::test::tinyFrame({{{0, 0}, {0.5f, 0.5f, 0.5f}}, {{1, 0}, {3.5f, 0.5f, 0.5f}}});
+  cleaner.accumulate(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}), kOrigin);
+  const auto voxels = cleaner.staticMap().voxels();
+  ASSERT_EQ(voxels.size(), 2u);
+  EXPECT_EQ(cleaner.moveToDynamic({voxels[1].key}), 1u);
+  ASSERT_EQ(cleaner.staticMap().size(), 1u);
+  EXPECT_NEAR(cleaner.staticMap().points()[0].x, 0.5, 1e-6);
+  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, 3.5, 1e-6);
+}
