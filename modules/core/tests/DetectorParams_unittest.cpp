@@ -20,6 +20,15 @@ TEST(DetectorParams, ShippedIniEqualsTheDefaults) {
   DetectorParams loaded;
   loaded.load(cfg);
   EXPECT_EQ(dump(loaded), dump(DetectorParams{}));
+  // ... and lists every parameter (a key missing from the file would silently keep its default).
+  ::mrpt::config::CConfigFileMemory all;
+  DetectorParams{}.save(all);
+  std::vector<std::string> sections, keys;
+  all.getAllSections(sections);
+  for (const auto& s : sections) {
+    all.getAllKeys(s, keys);
+    for (const auto& k : keys) EXPECT_TRUE(cfg.keyExists(s, k)) << "[" << s << "] " << k << " missing from dynobj.ini";
+  }
 }
 
 TEST(DetectorParams, SaveLoadRoundTripWithPrefix) {
