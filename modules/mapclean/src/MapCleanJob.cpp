@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "dynobj/mapclean/AtomicFile.h"
-#include "dynobj/mapclean/FreeSpaceCheck.h"
+#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
 #include "dynobj/mapclean/MrptOutputs.h"
@@ -147,7 +147,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
 
   sum.voted = cleaner.finish();
   if (o.clean.free_space_check && o.clean.voxel_size > 0) {  // a further streaming pass
-    FreeSpaceCheck check(o.clean.freeSpace(), cleaner.staticMap().voxels());
+    MapVisibilityCheck check(o.clean.freeSpace(), cleaner.staticMap().voxels());
     source->rewind();
     const auto stride = static_cast<std::size_t>(o.clean.free_space_stride);
     for (std::size_t k = 0; k < records.size(); k++) {

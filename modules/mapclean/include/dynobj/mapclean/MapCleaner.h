@@ -20,7 +20,7 @@
 #include <set>
 #include <vector>
 
-#include "dynobj/mapclean/FreeSpaceCheck.h"
+#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/VoxelMap.h"
 
 namespace dynobj::mapclean {
@@ -50,7 +50,7 @@ struct MapCleanParams : public core::StageParams {
   /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
   /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
   double dynamic_vote = 1.0;
-  /// Free-space check (FreeSpaceCheck.h) of the static map after the vote, against every
+  /// Free-space check (MapVisibilityCheck.h) of the static map after the vote, against every
   /// free_space_stride-th scan (a further streaming pass over the input; needs voxel_size > 0).
   bool free_space_check = true;
   /// Level every pose with the scan's floor (GroundLeveler.h): roll, pitch, height from the
@@ -102,7 +102,7 @@ class MapCleaner {
 
   /// After the last scan: applies the voxel vote. Returns the voxels moved.
   std::size_t finish();
-  /// Moves the static voxels with these keys (ascending, e.g. FreeSpaceCheck::seenThrough()) to
+  /// Moves the static voxels with these keys (ascending, e.g. MapVisibilityCheck::seenThrough()) to
   /// the dynamic map. Returns how many moved.
   std::size_t moveToDynamic(const std::vector<std::uint64_t>& keys);
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/mapclean/FreeSpaceCheck.h>
+#include <dynobj/mapclean/MapVisibilityCheck.h>
 #include <dynobj/mapclean/MapCleaner.h>
 #include <gtest/gtest.h>
 
@@ -52,8 +52,8 @@ std::vector<mc::VoxelCentre> oneVoxel() {
 
 }  // namespace
 
-TEST(FreeSpaceCheck, AVoxelSeenThroughByLaterScansIsRemoved) {
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+TEST(MapVisibilityCheck, AVoxelSeenThroughByLaterScansIsRemoved) {
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   check.addScan(frameAt(5.f), kOrigin);   // a person stood there: a hit
   check.addScan(frameAt(10.f), kOrigin);  // gone: every beam reaches the wall behind
   EXPECT_TRUE(check.seenThrough().empty());  // one see-through view is not enough (min_views 2)
@@ -63,48 +63,48 @@ TEST(FreeSpaceCheck, AVoxelSeenThroughByLaterScansIsRemoved) {
   EXPECT_EQ(check.seenThrough(), (std::vector<std::uint64_t>{42}));
 }
 
-TEST(FreeSpaceCheck, EarlierScansCountToo) {
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+TEST(MapVisibilityCheck, EarlierScansCountToo) {
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   check.addScan(frameAt(10.f), kOrigin);
   check.addScan(frameAt(10.f), kOrigin);
   check.addScan(frameAt(5.f), kOrigin);
   EXPECT_EQ(check.seenThrough(), (std::vector<std::uint64_t>{42}));
 }
 
-TEST(FreeSpaceCheck, AWallVoxelSeenAtAGrazingAngleIsKept) {
+TEST(MapVisibilityCheck, AWallVoxelSeenAtAGrazingAngleIsKept) {
   // The pixel itself ends 1 m beyond the voxel, but its neighbour (same row, next column) hits
   // the same wall at 4.9 m: the wall recedes within the beam. The window's nearest return is not
   // beyond the voxel, so no see-through view.
   const auto grazing = frameAt(6.f, {{{2, 3}, 4.9f}});
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   for (int i = 0; i < 4; i++) check.addScan(grazing, kOrigin);
   EXPECT_EQ(check.freeViews(0), 0);
   EXPECT_TRUE(check.seenThrough().empty());
   auto no_window = params();  // without the window the same views would remove it
   no_window.window = 0;
-  mc::FreeSpaceCheck naive(no_window, oneVoxel());
+  mc::MapVisibilityCheck naive(no_window, oneVoxel());
   for (int i = 0; i < 4; i++) naive.addScan(grazing, kOrigin);
   EXPECT_EQ(naive.seenThrough().size(), 1u);
 }
 
-TEST(FreeSpaceCheck, ReturnsWithinTheMarginAreHitsNotSeeThrough) {
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+TEST(MapVisibilityCheck, ReturnsWithinTheMarginAreHitsNotSeeThrough) {
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   check.addScan(frameAt(5.5f), kOrigin);  // 0.5 m beyond: within 0.3 + 5 % of 5 m
   check.addScan(frameAt(5.5f), kOrigin);
   EXPECT_EQ(check.freeViews(0), 0);
   EXPECT_EQ(check.hitViews(0), 2);
 }
 
-TEST(FreeSpaceCheck, OccludedOrMissingReturnsGiveNoEvidence) {
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+TEST(MapVisibilityCheck, OccludedOrMissingReturnsGiveNoEvidence) {
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   check.addScan(frameAt(3.f), kOrigin);                 // something in front hides the voxel
   check.addScan(frameAt(10.f, {{{2, 4}, 0.f}}), kOrigin);  // no return in its pixel
   EXPECT_EQ(check.freeViews(0), 0);
   EXPECT_EQ(check.hitViews(0), 0);
 }
 
-TEST(FreeSpaceCheck, StaticVoxelsHitOftenAreKept) {
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+TEST(MapVisibilityCheck, StaticVoxelsHitOftenAreKept) {
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   for (int i = 0; i < 3; i++) check.addScan(frameAt(5.f), kOrigin);
   for (int i = 0; i < 5; i++) check.addScan(frameAt(10.f), kOrigin);  // 5 < ratio 2 x 3 hits
   EXPECT_TRUE(check.seenThrough().empty());
@@ -112,12 +112,12 @@ TEST(FreeSpaceCheck, StaticVoxelsHitOftenAreKept) {
   EXPECT_EQ(check.seenThrough().size(), 1u);
 }
 
-TEST(FreeSpaceCheck, UsesTheScanPose) {
+TEST(MapVisibilityCheck, UsesTheScanPose) {
   // The voxel is 5 m along +x of the world; the sensor stands 2 m further back along x.
   const cv::Vec3f v = beam(2, 4, 5.f);
   Eigen::Isometry3d back = Eigen::Isometry3d::Identity();
   back.translation() = Eigen::Vector3d(-2.0 * v[0] / 5.0, -2.0 * v[1] / 5.0, -2.0 * v[2] / 5.0);
-  mc::FreeSpaceCheck check(params(), oneVoxel());
+  mc::MapVisibilityCheck check(params(), oneVoxel());
   check.addScan(frameAt(7.f), back);  // 7 m from there: the voxel itself
   check.addScan(frameAt(12.f), back);
   EXPECT_EQ(check.hitViews(0), 1);

@@ -39,13 +39,13 @@ struct FreeSpaceParams {
   double min_range = 0.0;    ///< [m] voxels nearer to the sensor than this give no evidence
 };
 
-class FreeSpaceCheck {
+class MapVisibilityCheck {
  public:
   /// `voxels`: the candidates (key + centre), e.g. VoxelMap::voxels() of the static map.
-  FreeSpaceCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels);
-  ~FreeSpaceCheck();
-  FreeSpaceCheck(const FreeSpaceCheck&) = delete;
-  FreeSpaceCheck& operator=(const FreeSpaceCheck&) = delete;
+  MapVisibilityCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels);
+  ~MapVisibilityCheck();
+  MapVisibilityCheck(const MapVisibilityCheck&) = delete;
+  MapVisibilityCheck& operator=(const MapVisibilityCheck&) = delete;
 
   /// One scan (sensor frame) placed in the world with `sensor_pose`: counts, for every candidate
   /// in its field of view, a see-through view or a hit.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mapclean/FreeSpaceCheck.h"
+#include "dynobj/mapclean/MapVisibilityCheck.h"
 
 #include <dynobj/core/SphericalProjection.h>
 
@@ -41,12 +41,12 @@ void bump(std::uint16_t& n) {
 
 }  // namespace
 
-FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels)
+MapVisibilityCheck::MapVisibilityCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels)
     : p_(p), voxels_(std::move(voxels)), free_(voxels_.size(), 0), hit_(voxels_.size(), 0) {}
 
-FreeSpaceCheck::~FreeSpaceCheck() = default;
+MapVisibilityCheck::~MapVisibilityCheck() = default;
 
-void FreeSpaceCheck::addScan(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose) {
+void MapVisibilityCheck::addScan(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose) {
   const core::SensorModel& s = frame.sensor;
   if (!projection_ || projection_->sensor().rows != s.rows || projection_->sensor().cols != s.cols)
     projection_ = std::make_unique<core::SphericalProjection>(s);
@@ -69,7 +69,7 @@ void FreeSpaceCheck::addScan(const core::LidarFrame& frame, const Eigen::Isometr
   }
 }
 
-std::vector<std::uint64_t> FreeSpaceCheck::seenThrough() const {
+std::vector<std::uint64_t> MapVisibilityCheck::seenThrough() const {
   std::vector<std::uint64_t> keys;
   for (std::size_t i = 0; i < voxels_.size(); i++)
     if (free_[i] >= p_.min_views && free_[i] >= p_.ratio * hit_[i]) keys.push_back(voxels_[i].key);
