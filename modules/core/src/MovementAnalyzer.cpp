@@ -41,8 +41,8 @@ bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b, c
   // occluding edge) while the other follows the view; a car's two ends both move as its
   // centroid does. Ends are compared along the motion direction v, in the window's first frame.
   if (p_.rigid_tolerance <= 0) return false;
-  if ((a.end_b - a.end_a).norm() < p_.long_object_length || (b.end_b - b.end_a).norm() < p_.long_object_length)
-    return false;  // ends unknown (or not an elongated cluster then): no exemption
+  if ((a.end_b - a.end_a).norm() < 1e-6 || (b.end_b - b.end_a).norm() < 1e-6)
+    return false;  // ends unknown: no exemption
   const auto along = [&](const Eigen::Vector3d& p) { return p.head<2>().dot(v.head<2>().normalized()); };
   double a0 = along(a.end_a), a1 = along(a.end_b), b0 = along(T_ab * b.end_a), b1 = along(T_ab * b.end_b);
   if (a0 > a1) std::swap(a0, a1);
@@ -73,7 +73,8 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
   d.candidate = d.displacement > p_.min_displacement && d.speed <= p_.max_speed;
   d.drift = d.path <= 0 || d.displacement / d.path < p_.min_straightness;
 
-  // Eq. (21)-(23), for elongated clusters only (a compact cluster's PCA axis is meaningless).
+  // Eq. (21)-(23), for clusters at least this elongated and long (by default every cluster: a
+  // compact cluster's PCA axis is noise, but a rigid mover is exempt once free space proves it).
   if (d.candidate && cluster.elongation >= p_.long_object_elongation &&
       cluster.length >= p_.long_object_length) {
     const Eigen::Vector3d v = (cw.back() - cw.front()) / d.displacement;  // Eq. (21)

@@ -27,8 +27,9 @@ struct MovementParams : public StageParams {
   double min_displacement = 0.25;    ///< epsilon_d [m] over the window
   double min_straightness = 0.5;     ///< epsilon_o: f / f_a below this is drift
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
-  double long_object_elongation = 1.5;  ///< only clusters at least this elongated ...
-  double long_object_length = 0.5;      ///< ... and this long [m] are tested for Eq. (23)
+  double long_object_elongation = 1.0;  ///< only clusters at least this elongated ...
+  double long_object_length = 0.0;      ///< ... and this long [m] are tested for Eq. (23)
+                                        ///< (defaults: every cluster; see rigid_tolerance)
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never
