@@ -12,15 +12,14 @@ namespace dynobj::core {
 namespace {
 
 /// Gaussian blur of the (2a+1) x (2b+1) kernel of Eq. (2)-(3), wrapping around horizontally
-/// (the image is a 360 degree scan) and reflecting at the top and bottom.
-void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat_<float>& tmp,
-                 cv::Mat_<float>& dst) {
+/// (the image is a 360 degree scan) and reflecting at the top and bottom. `vert`, `padded` and
+/// `blurred` are scratch buffers kept by the caller (no allocation once sized).
+void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat& vert, cv::Mat& padded,
+                 cv::Mat& blurred, cv::Mat_<float>& dst) {
   const int a = p.kernel_half_width, b = p.kernel_half_height;
-  cv::Mat vert;
   cv::copyMakeBorder(src, vert, b, b, 0, 0, cv::BORDER_REFLECT_101);
-  cv::copyMakeBorder(vert, tmp, 0, 0, a, a, cv::BORDER_WRAP);
-  cv::Mat blurred;
-  cv::GaussianBlur(tmp, blurred, cv::Size(2 * a + 1, 2 * b + 1), p.sigma_horizontal,
+  cv::copyMakeBorder(vert, padded, 0, 0, a, a, cv::BORDER_WRAP);
+  cv::GaussianBlur(padded, blurred, cv::Size(2 * a + 1, 2 * b + 1), p.sigma_horizontal,
                    p.sigma_vertical, cv::BORDER_REFLECT_101);
   blurred(cv::Rect(a, b, src.cols, src.rows)).copyTo(dst);
 }
@@ -86,8 +85,8 @@ void ForegroundExtractor::extract(const LidarFrame& frame, const cv::Mat_<std::u
   normalize(frame);
   frame.valid.convertTo(v_, CV_32F, 1.0 / 255.0);
   // Normalised convolution: h = (f * g) / (valid * g), so no-returns do not act as dark pixels.
-  blurWrapped(f_, p_, padded_, blurred_);
-  blurWrapped(v_, p_, padded_, weight_);
+  blurWrapped(f_, p_, vert_, padded_, scratch_, blurred_);
+  blurWrapped(v_, p_, vert_, padded_, scratch_, weight_);
   features.create(frame.range.size());
   const int n = frame.rows() * frame.cols();
   const float* f = f_.ptr<float>(0);

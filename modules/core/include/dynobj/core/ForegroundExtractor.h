@@ -46,7 +46,8 @@ class ForegroundExtractor {
 
  private:
   ForegroundParams p_;
-  cv::Mat_<float> f_, fv_, v_, padded_, blurred_, weight_;
+  cv::Mat_<float> f_, fv_, v_, blurred_, weight_;
+  cv::Mat vert_, padded_, scratch_;  ///< blur buffers, kept across frames
   std::vector<float> sample_;
 };
 
