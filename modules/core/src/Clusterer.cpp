@@ -271,35 +271,45 @@ void Clusterer::linkGrid(std::vector<int>& parent) {
     cells_.emplace_back(cellKey(cellOf(pts_[i].x(), inv), cellOf(pts_[i].y(), inv), cellOf(pts_[i].z(), inv)),
                         static_cast<int>(i));
   std::sort(cells_.begin(), cells_.end());
-  const auto linkIfNear = [&](int i, int j) {
-    const Eigen::Vector3f& p = pts_[static_cast<std::size_t>(i)];
-    const Eigen::Vector3f& q = pts_[static_cast<std::size_t>(j)];
+  // Link in sorted order (points and union-find contiguous for the scans below), then map back.
+  const std::size_t n = cells_.size();
+  spts_.resize(n);
+  sparent_.resize(n);
+  for (std::size_t k = 0; k < n; k++) {
+    spts_[k] = pts_[static_cast<std::size_t>(cells_[k].second)];
+    sparent_[k] = static_cast<int>(k);
+  }
+  const auto linkIfNear = [&](std::size_t a, std::size_t b) {
+    const Eigen::Vector3f& p = spts_[a];
+    const Eigen::Vector3f& q = spts_[b];
     const float dx = q.x() - p.x(), dy = q.y() - p.y();
-    if (dx * dx + dy * dy <= eps2 && std::abs(q.z() - p.z()) <= eps) unite(parent, i, j);
+    if (dx * dx + dy * dy <= eps2 && std::abs(q.z() - p.z()) <= eps)
+      unite(sparent_, static_cast<int>(a), static_cast<int>(b));
   };
   constexpr std::uint64_t X = std::uint64_t{1} << 42, Y = std::uint64_t{1} << 21;
   // Forward columns (dx, dy) in {(0,1), (1,-1), (1,0), (1,1)}, each spanning dz = -1..+1.
   const std::uint64_t offset[4] = {Y, X - Y, X, X + Y};
   std::size_t cursor[4] = {0, 0, 0, 0};
-  const std::size_t n = cells_.size();
   for (std::size_t s = 0; s < n;) {
     const std::uint64_t key = cells_[s].first;
     std::size_t e = s;
     while (e < n && cells_[e].first == key) e++;
-    for (std::size_t a = s; a < e; a++) {
-      for (std::size_t b = a + 1; b < e; b++) linkIfNear(cells_[a].second, cells_[b].second);  // same cell
-      for (std::size_t b = e; b < n && cells_[b].first == key + 1; b++)  // (0, 0, +1)
-        linkIfNear(cells_[a].second, cells_[b].second);
-    }
+    std::size_t up = e;  // the cell above, (0, 0, +1), if any, starts right after this one
+    while (up < n && cells_[up].first == key + 1) up++;
+    for (std::size_t a = s; a < e; a++)
+      for (std::size_t b = a + 1; b < up; b++) linkIfNear(a, b);  // same cell and the one above
     for (int k = 0; k < 4; k++) {
       const std::uint64_t lo = key + offset[k] - 1, hi = key + offset[k] + 1;
       std::size_t& c = cursor[k];
       while (c < n && cells_[c].first < lo) c++;
       for (std::size_t b = c; b < n && cells_[b].first <= hi; b++)
-        for (std::size_t a = s; a < e; a++) linkIfNear(cells_[a].second, cells_[b].second);
+        for (std::size_t a = s; a < e; a++) linkIfNear(a, b);
     }
     s = e;
   }
+  // Each point's parent: the original index of its sorted root (a root maps to itself).
+  for (std::size_t k = 0; k < n; k++)
+    parent[static_cast<std::size_t>(cells_[k].second)] = cells_[static_cast<std::size_t>(root(sparent_, static_cast<int>(k)))].second;
 }
 
 }  // namespace dynobj::core

@@ -67,6 +67,8 @@ class Clusterer {
   std::vector<std::uint64_t> slot_key_;  ///< voxel hash table: key of each slot ...
   std::vector<int> slot_rep_;             ///< ... and its representative (index in pts_)
   std::vector<std::pair<std::uint64_t, int>> cells_;  ///< grid cell key, index in pts_
+  std::vector<Eigen::Vector3f> spts_;  ///< pts_ in cell order
+  std::vector<int> sparent_;           ///< union-find over spts_
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
 
