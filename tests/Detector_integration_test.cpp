@@ -7,10 +7,10 @@
 #include <dynobj/mrpt/LidarObservationStream.h>
 #include <dynobj/mrpt/PointCloudFilterAdapter.h>
 #include <dynobj/mrpt/TimeConversion.h>
-#include <mrpt/maps/CSimplePointsMap.h>
-#include <mrpt/poses/CPose3D.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <gtest/gtest.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPose3D.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -32,7 +32,8 @@ RunResult runSample(bool external) {
   RunResult out;
   const auto truth = core::LabelFile::read(kSample + ".gt.labels");
   const auto poses = core::readTumFile(kSample + ".gt.tum");
-  dynobj::mrpt::LidarObservationStream stream(kSample + ".rawlog", dynobj::mrpt::ObservationConverter(), {"LIDAR", 0, 1000000});
+  dynobj::mrpt::LidarObservationStream stream(
+      kSample + ".rawlog", dynobj::mrpt::ObservationConverter(), {"LIDAR", 0, 1000000});
   core::DynamicObjectDetector det;
   dynobj::mrpt::LidarObservationStream::Item item;
   const core::StampedPose* prev = nullptr;
@@ -45,7 +46,8 @@ RunResult runSample(bool external) {
     const auto& r = det.process(f, external ? true_motion : std::nullopt);
     if (true_motion && r.ego_motion.ok) {
       out.ego_ok++;
-      out.motion_errors.push_back((true_motion->translation() - r.ego_motion.motion.translation()).norm());
+      out.motion_errors.push_back(
+          (true_motion->translation() - r.ego_motion.motion.translation()).norm());
     }
     cv::Mat_<std::uint8_t> gt(f.rows(), f.cols(), std::uint8_t{0});
     for (auto px : truth.sweeps.at(static_cast<std::size_t>(out.frames)).pixels)
@@ -71,7 +73,7 @@ TEST(Detector, HallSampleWithIntensityEgoMotion) {
   // sliding window and the confirmation must fill first).
   EXPECT_GE(r.confusion.precision().value_or(0), 0.9);
   EXPECT_GE(r.confusion.recall().value_or(0), 0.45);
-  EXPECT_GE(r.ego_ok, 38);  // every frame but the first
+  EXPECT_GE(r.ego_ok, 38);                   // every frame but the first
   EXPECT_LT(median(r.motion_errors), 0.03);  // ORB ego-motion vs ground truth, per frame
 }
 

@@ -6,14 +6,13 @@
 
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
-#include <filesystem>
-#include <stdexcept>
-
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 namespace dynobj::apps {

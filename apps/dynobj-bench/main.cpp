@@ -16,8 +16,8 @@ namespace {
 
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-bench: time the detector on simulated frames", ' ', "0.1");
-  TCLAP::ValueArg<std::string> scenario("s", "scenario", "Scenario YAML (default: the shipped hall)",
-                                        false, "", "file.yaml", cmd);
+  TCLAP::ValueArg<std::string> scenario(
+      "s", "scenario", "Scenario YAML (default: the shipped hall)", false, "", "file.yaml", cmd);
   TCLAP::ValueArg<std::string> sensor("", "sensor",
                                       "Sensor preset, relative to share/dynobj (default: the "
                                       "scenario's, OS0-64 1024 x 10)",

@@ -9,13 +9,13 @@
 #include <dynobj/core/TumFile.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
 #include <mrpt/config/CConfigFile.h>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <opencv2/imgproc.hpp>
 
 #include "../common/AppMain.h"
 
@@ -35,20 +35,23 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "file.rawlog", cmd);
   TCLAP::ValueArg<std::string> out("o", "labels-out", "Write the detections (label file v1)", false,
                                    "", "file.labels", cmd);
-  TCLAP::ValueArg<std::string> gt("", "gt", "Ground-truth label file: print precision/recall/IoU/F1",
-                                  false, "", "file.labels", cmd);
-  TCLAP::ValueArg<std::string> poses("", "poses",
-                                     "TUM file of sensor poses: use them as ego-motion instead of the "
-                                     "intensity ego-motion (e.g. ground truth)",
-                                     false, "", "file.tum", cmd);
+  TCLAP::ValueArg<std::string> gt("", "gt",
+                                  "Ground-truth label file: print precision/recall/IoU/F1", false,
+                                  "", "file.labels", cmd);
+  TCLAP::ValueArg<std::string> poses(
+      "", "poses",
+      "TUM file of sensor poses: use them as ego-motion instead of the "
+      "intensity ego-motion (e.g. ground truth)",
+      false, "", "file.tum", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
                                       "file.ini", cmd);
-  TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (point clouds, rotating scans)",
-                                      false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "", "label", cmd);
+  TCLAP::ValueArg<std::string> sensor(
+      "", "sensor", "Sensor preset INI (point clouds, rotating scans)", false, "", "file.ini", cmd);
+  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "",
+                                     "label", cmd);
   TCLAP::ValueArg<std::string> overlays("", "overlay-dir",
-                                        "Write intensity images with dynamic pixels in red", false, "",
-                                        "dir", cmd);
+                                        "Write intensity images with dynamic pixels in red", false,
+                                        "", "dir", cmd);
   TCLAP::SwitchArg verbose("v", "verbose", "One line per frame", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
@@ -65,8 +68,9 @@ int run(int argc, char** argv) {
   if (poses.isSet()) trajectory = dynobj::core::readTumFile(poses.getValue());
   if (overlays.isSet()) dynobj::apps::ensureDirectory(overlays.getValue());
 
-  dynobj::mrpt::LidarObservationStream stream(in.getValue(), dynobj::mrpt::ObservationConverter(model),
-                                              {label.getValue(), 0, std::numeric_limits<std::size_t>::max()});
+  dynobj::mrpt::LidarObservationStream stream(
+      in.getValue(), dynobj::mrpt::ObservationConverter(model),
+      {label.getValue(), 0, std::numeric_limits<std::size_t>::max()});
   dynobj::core::DynamicObjectDetector detector(params);
   std::unique_ptr<dynobj::core::LabelFileWriter> writer;
   dynobj::mrpt::LidarObservationStream::Item item;
@@ -79,8 +83,9 @@ int run(int argc, char** argv) {
     std::optional<Eigen::Isometry3d> motion;
     if (!trajectory.empty()) {
       const auto* p = dynobj::core::findPose(trajectory, f.timestamp_ns);
-      if (!p) throw std::runtime_error("no pose in '" + poses.getValue() + "' for frame at " +
-                                       std::to_string(f.timestamp_ns) + " ns");
+      if (!p)
+        throw std::runtime_error("no pose in '" + poses.getValue() + "' for frame at " +
+                                 std::to_string(f.timestamp_ns) + " ns");
       if (prev_pose) motion = prev_pose->pose.inverse() * p->pose;
       prev_pose = p;
     }
@@ -101,7 +106,8 @@ int run(int argc, char** argv) {
                                  std::to_string(truth->cols) + " but the scans are " +
                                  std::to_string(f.rows()) + "x" + std::to_string(f.cols()));
       cv::Mat_<std::uint8_t> gt_mask(f.rows(), f.cols(), std::uint8_t{0});
-      for (auto px : truth->sweeps[frames].pixels) gt_mask(static_cast<int>(px) / f.cols(), static_cast<int>(px) % f.cols()) = 255;
+      for (auto px : truth->sweeps[frames].pixels)
+        gt_mask(static_cast<int>(px) / f.cols(), static_cast<int>(px) % f.cols()) = 255;
       truth_pos += truth->sweeps[frames].pixels.size();
       c.add(r.dynamic, gt_mask, f.valid);
       total += c;
@@ -111,16 +117,19 @@ int run(int argc, char** argv) {
         const int n = cv::connectedComponents(gt_mask, labels, 8, CV_32S);
         std::vector<char> hit(static_cast<std::size_t>(n), 0);
         for (int i = 0; i < f.rows() * f.cols(); i++)
-          if (r.dynamic(i / f.cols(), i % f.cols()) && labels.at<int>(i / f.cols(), i % f.cols()) > 0)
+          if (r.dynamic(i / f.cols(), i % f.cols()) &&
+              labels.at<int>(i / f.cols(), i % f.cols()) > 0)
             hit[static_cast<std::size_t>(labels.at<int>(i / f.cols(), i % f.cols()))] = 1;
         for (int i = 0; i < f.rows() * f.cols(); i++) {
           const int l = labels.at<int>(i / f.cols(), i % f.cols());
-          if (l > 0 && !r.dynamic(i / f.cols(), i % f.cols()) && f.valid(i / f.cols(), i % f.cols()))
+          if (l > 0 && !r.dynamic(i / f.cols(), i % f.cols()) &&
+              f.valid(i / f.cols(), i % f.cols()))
             (hit[static_cast<std::size_t>(l)] ? fn_grow : fn_missed)++;
         }
       }
       if (overlays.isSet()) {
-        cv::Mat img = dynobj::core::overlayMask(dynobj::core::intensityToU8(f), r.dynamic & gt_mask, {0, 0, 255});
+        cv::Mat img = dynobj::core::overlayMask(dynobj::core::intensityToU8(f), r.dynamic & gt_mask,
+                                                {0, 0, 255});
         img.setTo(cv::Scalar(0, 255, 255), r.dynamic & ~gt_mask);
         img.setTo(cv::Scalar(255, 0, 0), gt_mask & ~r.dynamic);
         char name[64];
@@ -129,12 +138,15 @@ int run(int argc, char** argv) {
       }
     }
     if (verbose.isSet())
-      std::printf("frame %4zu: ego %-17s inl %4d/%4d | %5d features %3zu objects, %2d dynamic | %6d px | TP %5ld FP %5ld FN %5ld | %.2f ms\n",
-                  frames, r.ego_motion.source.c_str(), r.ego_motion.inliers, r.ego_motion.matches, cv::countNonZero(r.features),
-                  r.objects.size(),
-                  static_cast<int>(std::count_if(r.objects.begin(), r.objects.end(), [](const auto& o) { return o.dynamic; })),
-                  cv::countNonZero(r.dynamic), static_cast<long>(c.tp), static_cast<long>(c.fp),
-                  static_cast<long>(c.fn), t.total);
+      std::printf(
+          "frame %4zu: ego %-17s inl %4d/%4d | %5d features %3zu objects, %2d dynamic | %6d px | "
+          "TP %5ld FP %5ld FN %5ld | %.2f ms\n",
+          frames, r.ego_motion.source.c_str(), r.ego_motion.inliers, r.ego_motion.matches,
+          cv::countNonZero(r.features), r.objects.size(),
+          static_cast<int>(std::count_if(r.objects.begin(), r.objects.end(),
+                                         [](const auto& o) { return o.dynamic; })),
+          cv::countNonZero(r.dynamic), static_cast<long>(c.tp), static_cast<long>(c.fp),
+          static_cast<long>(c.fn), t.total);
     frames++;
   }
   if (frames == 0) throw std::runtime_error("no LiDAR observation in '" + in.getValue() + "'");
@@ -145,16 +157,19 @@ int run(int argc, char** argv) {
   timing.print(std::cout);
   std::cout.flush();
   if (truth)
-    std::printf("  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged %s%%)\n",
-                fmt(total.precision()).c_str(), fmt(total.recall()).c_str(), fmt(total.iou()).c_str(),
-                fmt(total.f1()).c_str(), static_cast<long>(total.tp), static_cast<long>(total.fp),
-                static_cast<long>(total.fn),
-                total.falsePositiveRate() ? fmt(100.0 * *total.falsePositiveRate()).c_str() : "n/a");
+    std::printf(
+        "  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged "
+        "%s%%)\n",
+        fmt(total.precision()).c_str(), fmt(total.recall()).c_str(), fmt(total.iou()).c_str(),
+        fmt(total.f1()).c_str(), static_cast<long>(total.tp), static_cast<long>(total.fp),
+        static_cast<long>(total.fn),
+        total.falsePositiveRate() ? fmt(100.0 * *total.falsePositiveRate()).c_str() : "n/a");
   if (truth)
-    std::printf("  seeds (accepted clusters before region growing): precision %s, %ld points; "
-                "misses: %zu in undetected objects, %zu in detected objects\n",
-                fmt(seeds_total.precision()).c_str(), static_cast<long>(seeds_total.tp + seeds_total.fp),
-                fn_missed, fn_grow);
+    std::printf(
+        "  seeds (accepted clusters before region growing): precision %s, %ld points; "
+        "misses: %zu in undetected objects, %zu in detected objects\n",
+        fmt(seeds_total.precision()).c_str(), static_cast<long>(seeds_total.tp + seeds_total.fp),
+        fn_missed, fn_grow);
   return 0;
 }
 

@@ -4,8 +4,8 @@
 //   --run <scenario.yaml | sequence dir | file.rawlog>: simulate if needed, run the detector and
 //         the baselines, evaluate, report.
 //   --gt <file.labels> --pred <file.labels>: evaluate existing label files.
-#include <dynobj/core/LabelFile.h>
 #include <dynobj/core/FrameImages.h>
+#include <dynobj/core/LabelFile.h>
 #include <dynobj/eval/ExperimentRunner.h>
 #include <dynobj/eval/Overlay.h>
 #include <dynobj/eval/Report.h>
@@ -43,7 +43,8 @@ std::set<int> overlaySweeps(int count, std::size_t frames) {
   std::set<int> out;
   const int first = std::min<int>(10, static_cast<int>(frames) - 1);
   for (int i = 0; i < count; i++)
-    out.insert(first + static_cast<int>((static_cast<double>(i) + 0.5) / count * (static_cast<double>(frames) - first)));
+    out.insert(first + static_cast<int>((static_cast<double>(i) + 0.5) / count *
+                                        (static_cast<double>(frames) - first)));
   return out;
 }
 
@@ -63,31 +64,49 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
       sheet.emplace_back(r.sequence + " " + r.mode + ", sweep " + std::to_string(sweep), img);
     }
   }
-  if (!sheet.empty()) core::writePng(dir + "/overlays/contact-sheet.png", eval::contactSheet(sheet));
+  if (!sheet.empty())
+    core::writePng(dir + "/overlays/contact-sheet.png", eval::contactSheet(sheet));
   eval::writeHtmlReport(dir + "/report.html", title, command, runs);
   std::cerr << "[dynobj-eval] report: " << dir << "/report.html (and summary.md, summary.json, "
             << "*.sweeps.csv, overlays/)\n";
 }
 
 int run(int argc, char** argv) {
-  TCLAP::CmdLine cmd("dynobj-eval: evaluate dynamic-point detections and write a report", ' ', "0.1");
-  TCLAP::ValueArg<std::string> run_in("", "run", "Scenario (.yaml), sequence folder or .rawlog to simulate "
-                                      "(if needed), detect and evaluate", false, "", "input", cmd);
-  TCLAP::ValueArg<std::string> gt("", "gt", "Ground-truth label file (with --pred)", false, "", "file.labels", cmd);
-  TCLAP::ValueArg<std::string> pred("", "pred", "Predicted label file (with --gt)", false, "", "file.labels", cmd);
+  TCLAP::CmdLine cmd("dynobj-eval: evaluate dynamic-point detections and write a report", ' ',
+                     "0.1");
+  TCLAP::ValueArg<std::string> run_in("", "run",
+                                      "Scenario (.yaml), sequence folder or .rawlog to simulate "
+                                      "(if needed), detect and evaluate",
+                                      false, "", "input", cmd);
+  TCLAP::ValueArg<std::string> gt("", "gt", "Ground-truth label file (with --pred)", false, "",
+                                  "file.labels", cmd);
+  TCLAP::ValueArg<std::string> pred("", "pred", "Predicted label file (with --gt)", false, "",
+                                    "file.labels", cmd);
   TCLAP::ValueArg<std::string> out("o", "out", "Report folder", true, "", "dir", cmd);
-  TCLAP::ValueArg<std::string> modes("", "modes", "Comma-separated: intensity, gt-ego, drift, mrpt-distance "
-                                     "(default: all four when ground-truth poses exist)", false, "", "list", cmd);
-  TCLAP::ValueArg<int> frames("n", "frames", "Evaluate only the first N sweeps (and simulate N)", false, 0, "N", cmd);
-  TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "", "label", cmd);
-  TCLAP::ValueArg<std::string> drift("", "drift", "Drift of the injected odometry: sigma_xy, sigma_yaw_deg, "
-                                     "bias_scale, bias_yaw_deg, seed (e.g. bias_yaw_deg=0.1)", false, "", "k=v,...", cmd);
-  TCLAP::ValueArg<int> overlays("", "overlays", "Overlay images per run (evenly spaced sweeps)", false, 3, "N", cmd);
-  TCLAP::ValueArg<std::string> overlay_list("", "overlay-sweeps", "Overlay images of these sweeps (instead of "
-                                            "--overlays)", false, "", "i,j,...", cmd);
-  TCLAP::ValueArg<int> min_points("", "min-object-points", "Object recall counts objects with at least this "
-                                  "many points in a sweep", false, 10, "N", cmd);
+  TCLAP::ValueArg<std::string> modes("", "modes",
+                                     "Comma-separated: intensity, gt-ego, drift, mrpt-distance "
+                                     "(default: all four when ground-truth poses exist)",
+                                     false, "", "list", cmd);
+  TCLAP::ValueArg<int> frames("n", "frames", "Evaluate only the first N sweeps (and simulate N)",
+                              false, 0, "N", cmd);
+  TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
+                                      "file.ini", cmd);
+  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "",
+                                     "label", cmd);
+  TCLAP::ValueArg<std::string> drift("", "drift",
+                                     "Drift of the injected odometry: sigma_xy, sigma_yaw_deg, "
+                                     "bias_scale, bias_yaw_deg, seed (e.g. bias_yaw_deg=0.1)",
+                                     false, "", "k=v,...", cmd);
+  TCLAP::ValueArg<int> overlays("", "overlays", "Overlay images per run (evenly spaced sweeps)",
+                                false, 3, "N", cmd);
+  TCLAP::ValueArg<std::string> overlay_list("", "overlay-sweeps",
+                                            "Overlay images of these sweeps (instead of "
+                                            "--overlays)",
+                                            false, "", "i,j,...", cmd);
+  TCLAP::ValueArg<int> min_points("", "min-object-points",
+                                  "Object recall counts objects with at least this "
+                                  "many points in a sweep",
+                                  false, 10, "N", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (run_in.isSet() == (gt.isSet() || pred.isSet()) || gt.isSet() != pred.isSet()) {
@@ -122,16 +141,19 @@ int run(int argc, char** argv) {
   opts.sensor_label = label.getValue();
   opts.min_object_points = min_points.getValue();
   if (frames.getValue() > 0) opts.max_frames = static_cast<std::size_t>(frames.getValue());
-  const eval::SequenceFiles seq =
-      eval::SequenceFiles::prepare(run_in.getValue(), out.getValue(), apps::shareDir(), frames.getValue());
+  const eval::SequenceFiles seq = eval::SequenceFiles::prepare(run_in.getValue(), out.getValue(),
+                                                               apps::shareDir(), frames.getValue());
   std::vector<std::string> mode_list = splitList(modes.getValue());
   if (mode_list.empty())
-    mode_list = seq.poses.empty() ? std::vector<std::string>{"intensity"}
-                                  : std::vector<std::string>{"intensity", "gt-ego", "drift", "mrpt-distance"};
+    mode_list = seq.poses.empty()
+                    ? std::vector<std::string>{"intensity"}
+                    : std::vector<std::string>{"intensity", "gt-ego", "drift", "mrpt-distance"};
   for (const auto& m : mode_list)
     if (!eval::RunOptions::modes().count(m))
-      throw std::invalid_argument("--modes: unknown mode '" + m + "' (intensity, gt-ego, drift, mrpt-distance)");
-  const std::size_t n_sweeps = std::min(opts.max_frames, core::LabelFile::read(seq.labels).sweeps.size());
+      throw std::invalid_argument("--modes: unknown mode '" + m +
+                                  "' (intensity, gt-ego, drift, mrpt-distance)");
+  const std::size_t n_sweeps =
+      std::min(opts.max_frames, core::LabelFile::read(seq.labels).sweeps.size());
   opts.overlay_sweeps = overlaySweeps(std::max(0, overlays.getValue()), n_sweeps);
   if (overlay_list.isSet()) {
     opts.overlay_sweeps.clear();
@@ -143,7 +165,8 @@ int run(int argc, char** argv) {
       } catch (const std::exception&) {
       }
       if (used != item.size() || k < 0 || static_cast<std::size_t>(k) >= n_sweeps)
-        throw std::invalid_argument("--overlay-sweeps: '" + item + "' is not a sweep index in [0, " +
+        throw std::invalid_argument("--overlay-sweeps: '" + item +
+                                    "' is not a sweep index in [0, " +
                                     std::to_string(n_sweeps - 1) + "]");
       opts.overlay_sweeps.insert(k);
     }
@@ -155,9 +178,12 @@ int run(int argc, char** argv) {
     opts.mode = m;
     opts.progress = [&](std::size_t k) {
       if (quiet.isSet()) return;
-      if (tty) std::cerr << "\r[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/" << n_sweeps << std::flush;
+      if (tty)
+        std::cerr << "\r[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/"
+                  << n_sweeps << std::flush;
       else if (k % std::max<std::size_t>(1, n_sweeps / 4) == 0)
-        std::cerr << "[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/" << n_sweeps << "\n";
+        std::cerr << "[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/" << n_sweeps
+                  << "\n";
     };
     runs.push_back(eval::runExperiment(seq, opts));
     if (tty && !quiet.isSet()) std::cerr << "\n";

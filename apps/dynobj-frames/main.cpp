@@ -41,9 +41,9 @@ int run(int argc, char** argv) {
   const std::string dir = out.getValue();
   dynobj::apps::ensureDirectory(dir);
 
-  dynobj::mrpt::LidarObservationStream stream(
-      in.getValue(), dynobj::mrpt::ObservationConverter(model),
-      {label.getValue(), from.getValue(), to.getValue()});
+  dynobj::mrpt::LidarObservationStream stream(in.getValue(),
+                                              dynobj::mrpt::ObservationConverter(model),
+                                              {label.getValue(), from.getValue(), to.getValue()});
   dynobj::mrpt::LidarObservationStream::Item item;
   std::size_t frames = 0;
   while (stream.next(item)) {
@@ -62,10 +62,9 @@ int run(int argc, char** argv) {
   if (frames == 0) {
     std::string seen;
     for (const auto& [l, cls] : stream.labelsSeen()) seen += " '" + l + "' (" + cls + ")";
-    throw std::runtime_error("no LiDAR observation" +
-                             (label.isSet() ? " with label '" + label.getValue() + "'" : "") +
-                             " in '" + in.getValue() + "'; labels seen:" +
-                             (seen.empty() ? " none" : seen));
+    throw std::runtime_error(
+        "no LiDAR observation" + (label.isSet() ? " with label '" + label.getValue() + "'" : "") +
+        " in '" + in.getValue() + "'; labels seen:" + (seen.empty() ? " none" : seen));
   }
   std::cout << "dynobj-frames: " << frames << " frame(s) from " << stream.entriesRead()
             << " entries written to " << dir << "\n";

@@ -21,32 +21,46 @@ std::string pct(const std::optional<double>& v) {
 }
 
 int run(int argc, char** argv) {
-  TCLAP::CmdLine cmd("dynobj-mapclean: a static map without the trails of moving objects", ' ', "0.1");
-  TCLAP::ValueArg<std::string> in("i", "input", "Input: a .rawlog, or a KTH DynamicMap folder (pcd/*.pcd)",
-                                  true, "", "in", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out-dir", "Output folder (created if missing)", true, "", "dir", cmd);
-  TCLAP::ValueArg<std::string> poses("", "poses",
-                                     "Pose source: odometry | ego | viewpoint | file.tum | file.simplemap",
-                                     false, "odometry", "source", cmd);
-  TCLAP::SwitchArg tum_robot("", "tum-robot-poses", "The TUM file holds robot (not sensor) poses", cmd);
-  TCLAP::ValueArg<double> pose_tol("", "pose-tolerance", "Timestamp matching tolerance [s]", false, 0.001, "s", cmd);
-  TCLAP::ValueArg<std::string> config("c", "config",
-                                      "INI: detector sections (as dynobj.ini) and [mapclean] (voxel_size, "
-                                      "second_pass, box_margin, min_range, dynamic_vote, free_space_*)", false, "", "file.ini", cmd);
-  TCLAP::ValueArg<double> voxel("", "voxel", "Map voxel size [m] (0 = every point)", false, -1, "m", cmd);
-  TCLAP::SwitchArg level("", "level-poses",
-                         "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
+  TCLAP::CmdLine cmd("dynobj-mapclean: a static map without the trails of moving objects", ' ',
+                     "0.1");
+  TCLAP::ValueArg<std::string> in("i", "input",
+                                  "Input: a .rawlog, or a KTH DynamicMap folder (pcd/*.pcd)", true,
+                                  "", "in", cmd);
+  TCLAP::ValueArg<std::string> out("o", "out-dir", "Output folder (created if missing)", true, "",
+                                   "dir", cmd);
+  TCLAP::ValueArg<std::string> poses(
+      "", "poses", "Pose source: odometry | ego | viewpoint | file.tum | file.simplemap", false,
+      "odometry", "source", cmd);
+  TCLAP::SwitchArg tum_robot("", "tum-robot-poses", "The TUM file holds robot (not sensor) poses",
+                             cmd);
+  TCLAP::ValueArg<double> pose_tol("", "pose-tolerance", "Timestamp matching tolerance [s]", false,
+                                   0.001, "s", cmd);
+  TCLAP::ValueArg<std::string> config(
+      "c", "config",
+      "INI: detector sections (as dynobj.ini) and [mapclean] (voxel_size, "
+      "second_pass, box_margin, min_range, dynamic_vote, free_space_*)",
+      false, "", "file.ini", cmd);
+  TCLAP::ValueArg<double> voxel("", "voxel", "Map voxel size [m] (0 = every point)", false, -1, "m",
+                                cmd);
+  TCLAP::SwitchArg level(
+      "", "level-poses",
+      "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
   TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
-  TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (PCD folders, point clouds)", false, "",
-                                      "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this LiDAR", false, "", "label", cmd);
-  TCLAP::ValueArg<std::string> gt("", "gt", "Ground truth for SA/DA/AA: label file v1, or gt_cloud.pcd", false,
-                                  "", "file", cmd);
-  TCLAP::ValueArg<double> tol("", "tolerance", "Metric distance [m] (KTH benchmark: 0.05)", false, 0.05, "m", cmd);
-  TCLAP::ValueArg<std::string> kth("", "export-kth", "Also export a KTH DynamicMap folder (pcd/, gt_cloud.pcd)",
+  TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (PCD folders, point clouds)",
+                                      false, "", "file.ini", cmd);
+  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this LiDAR", false, "", "label",
+                                     cmd);
+  TCLAP::ValueArg<std::string> gt("", "gt",
+                                  "Ground truth for SA/DA/AA: label file v1, or gt_cloud.pcd",
+                                  false, "", "file", cmd);
+  TCLAP::ValueArg<double> tol("", "tolerance", "Metric distance [m] (KTH benchmark: 0.05)", false,
+                              0.05, "m", cmd);
+  TCLAP::ValueArg<std::string> kth("", "export-kth",
+                                   "Also export a KTH DynamicMap folder (pcd/, gt_cloud.pcd)",
                                    false, "", "dir", cmd);
   TCLAP::SwitchArg no_sm("", "no-simplemap", "Do not write cleaned.simplemap", cmd);
-  TCLAP::ValueArg<double> kf("", "keyframe-distance", "Cleaned simplemap: keyframe every this many m (0 = every scan)",
+  TCLAP::ValueArg<double> kf("", "keyframe-distance",
+                             "Cleaned simplemap: keyframe every this many m (0 = every scan)",
                              false, 1.0, "m", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
@@ -66,7 +80,8 @@ int run(int argc, char** argv) {
   if (single.isSet()) o.clean.second_pass = false;
   if (level.isSet()) o.clean.level_poses = true;
   o.clean.validate();
-  if (sensor.isSet()) o.scan_options.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
+  if (sensor.isSet())
+    o.scan_options.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
   o.scan_options.sensor_label = label.getValue();
   o.ground_truth = gt.getValue();
   o.tolerance = tol.getValue();
@@ -78,7 +93,8 @@ int run(int argc, char** argv) {
   std::string last_stage;
   const auto progress = [&](const char* stage, std::size_t done, std::size_t total) {
     if (quiet.isSet()) return;
-    const bool step = total ? (done % std::max<std::size_t>(1, total / 10) == 0 || done == total) : done % 50 == 0;
+    const bool step = total ? (done % std::max<std::size_t>(1, total / 10) == 0 || done == total)
+                            : done % 50 == 0;
     if (!tty && !step) return;
     if (tty && last_stage != stage && !last_stage.empty()) std::cerr << "\n";
     last_stage = stage;
@@ -91,19 +107,24 @@ int run(int argc, char** argv) {
   std::printf("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
               o.clean.level_poses ? " (leveled with the floor)" : "",
               o.clean.second_pass ? "two passes" : "single pass");
-  std::printf("  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
-              "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space check\n",
-              s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks, s.backfilled,
-              s.voted, s.seen_through);
+  std::printf(
+      "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
+      "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "
+      "check\n",
+      s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
+      s.backfilled, s.voted, s.seen_through);
   if (o.write_simplemap) std::printf("  cleaned simplemap: %zu keyframes\n", s.keyframes);
-  if (!o.export_kth.empty()) std::printf("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,
-                o.export_kth.c_str());
+  if (!o.export_kth.empty())
+    std::printf("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames,
+                s.exported_points, o.export_kth.c_str());
   if (s.scores) {
     const auto& m = *s.scores;
-    std::printf("  SA %s  DA %s  AA %s  ghost points %zu  (GT static %zu kept %zu, GT dynamic %zu removed %zu, "
-                "tolerance %.3f m)\n",
-                pct(m.sa()).c_str(), pct(m.da()).c_str(), pct(m.aa()).c_str(), m.ghost_points, m.gt_static,
-                m.static_kept, m.gt_dynamic, m.dynamic_removed, o.tolerance);
+    std::printf(
+        "  SA %s  DA %s  AA %s  ghost points %zu  (GT static %zu kept %zu, GT dynamic %zu removed "
+        "%zu, "
+        "tolerance %.3f m)\n",
+        pct(m.sa()).c_str(), pct(m.da()).c_str(), pct(m.aa()).c_str(), m.ghost_points, m.gt_static,
+        m.static_kept, m.gt_dynamic, m.dynamic_removed, o.tolerance);
   }
   std::printf("  %.1f s -> %s\n", s.seconds, o.out_dir.c_str());
   return 0;

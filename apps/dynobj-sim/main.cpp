@@ -32,8 +32,8 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> out("o", "out", "Output folder", true, "", "dir", cmd);
   TCLAP::ValueArg<int> frames("n", "frames", "Number of sweeps (overrides the scenario)", false, 0,
                               "N", cmd);
-  TCLAP::ValueArg<unsigned> seed("", "seed", "Random seed (overrides the scenario)", false, 0,
-                                 "S", cmd);
+  TCLAP::ValueArg<unsigned> seed("", "seed", "Random seed (overrides the scenario)", false, 0, "S",
+                                 cmd);
   TCLAP::MultiArg<std::string> sets("", "set",
                                     "Override any scenario key, e.g. --set noise.range_sigma=0.03",
                                     false, "key=value", cmd);
@@ -47,8 +47,8 @@ int run(int argc, char** argv) {
   auto overrides = parseSets(sets.getValue());
   if (frames.isSet()) overrides["frames"] = std::to_string(frames.getValue());
   if (seed.isSet()) overrides["seed"] = std::to_string(seed.getValue());
-  const dynobj::sim::LidarSimulator sim(
-      dynobj::sim::Scenario::fromYamlFile(scenario.getValue(), dynobj::apps::shareDir(), overrides));
+  const dynobj::sim::LidarSimulator sim(dynobj::sim::Scenario::fromYamlFile(
+      scenario.getValue(), dynobj::apps::shareDir(), overrides));
   const auto& s = sim.scenario();
   if (preview.isSet() && (preview.getValue() < 0 || preview.getValue() >= s.frames))
     throw std::invalid_argument("--preview must be a sweep index in [0, " +
@@ -64,23 +64,27 @@ int run(int argc, char** argv) {
     points += sweep.frame.validCount();
     dynamic += static_cast<std::size_t>(cv::countNonZero(sweep.dynamic));
     if (k == preview.getValue()) {
-      const cv::Mat img = dynobj::core::overlayMask(dynobj::core::intensityToU8(sweep.frame), sweep.dynamic);
-      dynobj::core::writePng(out.getValue() + "/" + s.name + ".preview.png", dynobj::core::scaleRows(img, 2));
+      const cv::Mat img =
+          dynobj::core::overlayMask(dynobj::core::intensityToU8(sweep.frame), sweep.dynamic);
+      dynobj::core::writePng(out.getValue() + "/" + s.name + ".preview.png",
+                             dynobj::core::scaleRows(img, 2));
     }
     if (tty)
-      std::cerr << "\r[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames << std::flush;
+      std::cerr << "\r[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames
+                << std::flush;
     else if (!quiet.isSet() && (k + 1) % std::max(1, s.frames / 10) == 0)
       std::cerr << "[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames << "\n";
   }
   writer.close();
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (tty) std::cerr << "\n";
-  std::printf("dynobj-sim: %s: %d sweeps of %dx%d (%s), %d actors, %.0f points/sweep, %.2f%% dynamic, "
-              "%.1f s (%.1f ms/sweep)\n  -> %s\n",
-              s.name.c_str(), s.frames, s.sensor.rows, s.sensor.cols, s.sensor.model.c_str(),
-              static_cast<int>(s.actors.size()), static_cast<double>(points) / s.frames,
-              points ? 100.0 * static_cast<double>(dynamic) / static_cast<double>(points) : 0.0,
-              secs, 1000.0 * secs / s.frames, writer.rawlogPath().c_str());
+  std::printf(
+      "dynobj-sim: %s: %d sweeps of %dx%d (%s), %d actors, %.0f points/sweep, %.2f%% dynamic, "
+      "%.1f s (%.1f ms/sweep)\n  -> %s\n",
+      s.name.c_str(), s.frames, s.sensor.rows, s.sensor.cols, s.sensor.model.c_str(),
+      static_cast<int>(s.actors.size()), static_cast<double>(points) / s.frames,
+      points ? 100.0 * static_cast<double>(dynamic) / static_cast<double>(points) : 0.0, secs,
+      1000.0 * secs / s.frames, writer.rawlogPath().c_str());
   return 0;
 }
 

@@ -32,13 +32,15 @@ class IcpSlamDynobj : public mrpt::apps::ICP_SLAM_App_Rawlog {
 
 /// [DynamicObjects] enabled, mode (drop | mark), sensor_label, sensor (preset path); detector
 /// parameters in sections [DynamicObjects_foreground], [DynamicObjects_movement], ...
-std::optional<dynobj::mrpt::DynamicObjectFilter> filterFrom(const mrpt::config::CConfigFileBase& c) {
+std::optional<dynobj::mrpt::DynamicObjectFilter> filterFrom(
+    const mrpt::config::CConfigFileBase& c) {
   const std::string s = "DynamicObjects";
   if (!c.sectionExists(s) || !dynobj::core::readBool(c, s, "enabled", true)) return std::nullopt;
   dynobj::mrpt::DynamicObjectFilter::Options o;
   o.mode = dynobj::mrpt::parseFilterMode(dynobj::core::readString(c, s, "mode", "drop"));
   if (o.mode != dynobj::mrpt::FilterMode::Drop && o.mode != dynobj::mrpt::FilterMode::Mark)
-    throw dynobj::core::ParameterError("[DynamicObjects] mode: only 'drop' and 'mark' make sense inside icp-slam");
+    throw dynobj::core::ParameterError(
+        "[DynamicObjects] mode: only 'drop' and 'mark' make sense inside icp-slam");
   o.sensor_label = dynobj::core::readString(c, s, "sensor_label", "");
   const std::string preset = dynobj::core::readString(c, s, "sensor", "");
   if (!preset.empty()) o.sensor = dynobj::core::SensorModel::fromFile(preset);
@@ -54,15 +56,18 @@ int main(int argc, char** argv) {
     app.initialize(argc, argv);
     app.filter = filterFrom(app.params);
     std::cout << "icp-slam-dynobj: dynamic-object filter "
-              << (app.filter ? std::string("on (mode ") + dynobj::mrpt::toString(app.filter->options().mode) + ")"
+              << (app.filter ? std::string("on (mode ") +
+                                   dynobj::mrpt::toString(app.filter->options().mode) + ")"
                              : std::string("off (no [DynamicObjects] section): stock icp-slam"))
               << std::endl;
     app.run();
     if (app.filter) {
       const auto& s = app.filter->summary();
-      std::cout << "icp-slam-dynobj: " << s.lidar << " LiDAR frames filtered, " << s.dynamic_points << " of "
-                << s.points << " points dynamic, " << s.passed_through << " passed through" << std::endl;
-      for (const auto& [msg, n] : s.warnings) std::cout << "  warning (" << n << "x): " << msg << "\n";
+      std::cout << "icp-slam-dynobj: " << s.lidar << " LiDAR frames filtered, " << s.dynamic_points
+                << " of " << s.points << " points dynamic, " << s.passed_through
+                << " passed through" << std::endl;
+      for (const auto& [msg, n] : s.warnings)
+        std::cout << "  warning (" << n << "x): " << msg << "\n";
     }
     return 0;
   });

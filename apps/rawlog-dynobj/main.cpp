@@ -14,8 +14,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "../common/AppMain.h"
@@ -25,27 +25,29 @@ namespace {
 namespace fs = std::filesystem;
 
 int run(int argc, char** argv) {
-  TCLAP::CmdLine cmd("rawlog-dynobj: tag or remove the points of moving objects in a rawlog", ' ', "0.1");
+  TCLAP::CmdLine cmd("rawlog-dynobj: tag or remove the points of moving objects in a rawlog", ' ',
+                     "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "in.rawlog", cmd);
   TCLAP::ValueArg<std::string> out("o", "output", "Output rawlog", true, "", "out.rawlog", cmd);
   TCLAP::SwitchArg overwrite("w", "overwrite", "Replace an existing output file", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
-  TCLAP::ValueArg<std::string> mode("", "mode", "mark | drop | split | restore (default: drop)", false,
-                                    "drop", "mode", cmd);
-  TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> section("", "section", "Prefix of the INI sections (e.g. dynobj_)", false,
-                                       "", "prefix", cmd);
-  TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (point clouds, rotating scans)",
-                                      false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only the LiDAR with this label", false, "",
-                                     "label", cmd);
-  TCLAP::ValueArg<std::string> labels_out("", "labels-out", "Also write the detections (label file v1)",
-                                          false, "", "file.labels", cmd);
-  TCLAP::ValueArg<std::string> tracks_out("", "tracks-out",
-                                          "Also write the tracked objects, one CSV row per frame and track",
-                                          false, "", "file.csv", cmd);
-  TCLAP::ValueArg<std::size_t> from("", "from", "First entry to filter (earlier ones are copied)", false, 0,
-                                    "N", cmd);
+  TCLAP::ValueArg<std::string> mode("", "mode", "mark | drop | split | restore (default: drop)",
+                                    false, "drop", "mode", cmd);
+  TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
+                                      "file.ini", cmd);
+  TCLAP::ValueArg<std::string> section("", "section", "Prefix of the INI sections (e.g. dynobj_)",
+                                       false, "", "prefix", cmd);
+  TCLAP::ValueArg<std::string> sensor(
+      "", "sensor", "Sensor preset INI (point clouds, rotating scans)", false, "", "file.ini", cmd);
+  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only the LiDAR with this label", false,
+                                     "", "label", cmd);
+  TCLAP::ValueArg<std::string> labels_out(
+      "", "labels-out", "Also write the detections (label file v1)", false, "", "file.labels", cmd);
+  TCLAP::ValueArg<std::string> tracks_out(
+      "", "tracks-out", "Also write the tracked objects, one CSV row per frame and track", false,
+      "", "file.csv", cmd);
+  TCLAP::ValueArg<std::size_t> from("", "from", "First entry to filter (earlier ones are copied)",
+                                    false, 0, "N", cmd);
   TCLAP::ValueArg<std::size_t> to("", "to", "Last entry to filter (later ones are copied)", false,
                                   std::numeric_limits<std::size_t>::max(), "N", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
@@ -60,7 +62,8 @@ int run(int argc, char** argv) {
   opts.sensor_label = label.getValue();
   if (sensor.isSet()) opts.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
   if (config.isSet()) {
-    if (!fs::exists(config.getValue())) throw std::runtime_error("config file '" + config.getValue() + "' does not exist");
+    if (!fs::exists(config.getValue()))
+      throw std::runtime_error("config file '" + config.getValue() + "' does not exist");
     ::mrpt::config::CConfigFile cfg(config.getValue());
     opts.detector.load(cfg, section.getValue());
   }
@@ -89,7 +92,8 @@ int run(int argc, char** argv) {
   if (tracks_out.isSet()) {
     tracks.open(tracks_partial);
     if (!tracks) throw std::runtime_error("cannot write '" + tracks_partial + "'");
-    tracks << "timestamp_ns,sensor_label,id,dynamic,age,points,x,y,z,vx,vy,min_x,min_y,min_z,max_x,max_y,max_z\n";
+    tracks << "timestamp_ns,sensor_label,id,dynamic,age,points,x,y,z,vx,vy,min_x,min_y,min_z,max_x,"
+              "max_y,max_z\n";
   }
   struct TracksCleanup {
     std::string path;
@@ -106,21 +110,24 @@ int run(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   dynobj::mrpt::RawlogEntry e;
   std::vector<::mrpt::obs::CObservation::Ptr> extra;
-  auto onResult = [&](const ::mrpt::obs::CObservation& obs, const dynobj::core::DetectionResult* r) {
+  auto onResult = [&](const ::mrpt::obs::CObservation& obs,
+                      const dynobj::core::DetectionResult* r) {
     if (r && tracks_out.isSet())
       for (const auto& o : r->objects)
-        tracks << r->timestamp_ns << ',' << obs.sensorLabel << ',' << o.id << ',' << (o.dynamic ? 1 : 0) << ','
-               << o.age << ',' << o.points << ',' << o.centroid.x() << ',' << o.centroid.y() << ','
-               << o.centroid.z() << ',' << o.velocity.x() << ',' << o.velocity.y() << ',' << o.box_min.x()
-               << ',' << o.box_min.y() << ',' << o.box_min.z() << ',' << o.box_max.x() << ','
-               << o.box_max.y() << ',' << o.box_max.z() << '\n';
+        tracks << r->timestamp_ns << ',' << obs.sensorLabel << ',' << o.id << ','
+               << (o.dynamic ? 1 : 0) << ',' << o.age << ',' << o.points << ',' << o.centroid.x()
+               << ',' << o.centroid.y() << ',' << o.centroid.z() << ',' << o.velocity.x() << ','
+               << o.velocity.y() << ',' << o.box_min.x() << ',' << o.box_min.y() << ','
+               << o.box_min.z() << ',' << o.box_max.x() << ',' << o.box_max.y() << ','
+               << o.box_max.z() << '\n';
     if (!r || !labels_out.isSet()) return;
     if (!labels) {
       labels_sensor = obs.sensorLabel;
-      labels = std::make_unique<dynobj::core::LabelFileWriter>(labels_out.getValue(), r->dynamic.rows, r->dynamic.cols);
+      labels = std::make_unique<dynobj::core::LabelFileWriter>(labels_out.getValue(),
+                                                               r->dynamic.rows, r->dynamic.cols);
     } else if (obs.sensorLabel != labels_sensor) {
-      throw std::runtime_error("--labels-out: the rawlog has several LiDARs ('" + labels_sensor + "', '" +
-                               obs.sensorLabel + "'); choose one with --sensor-label");
+      throw std::runtime_error("--labels-out: the rawlog has several LiDARs ('" + labels_sensor +
+                               "', '" + obs.sensorLabel + "'); choose one with --sensor-label");
     }
     labels->write(r->timestamp_ns, dynobj::core::pixelsOfMask(r->dynamic));
   };
@@ -149,8 +156,9 @@ int run(int argc, char** argv) {
     }
     if (tty && e.index % 10 == 0) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::fprintf(stderr, "\r[rawlog-dynobj] entry %zu, %zu LiDAR frames, %.1f frames/s   ", e.index + 1,
-                   filter.summary().lidar, s > 0 ? static_cast<double>(filter.summary().lidar) / s : 0.0);
+      std::fprintf(stderr, "\r[rawlog-dynobj] entry %zu, %zu LiDAR frames, %.1f frames/s   ",
+                   e.index + 1, filter.summary().lidar,
+                   s > 0 ? static_cast<double>(filter.summary().lidar) / s : 0.0);
     }
   }
   file.close();
@@ -165,11 +173,15 @@ int run(int argc, char** argv) {
   cleanup.armed = false;
   if (tty) std::fprintf(stderr, "\n");
   const auto& sm = filter.summary();
-  std::printf("rawlog-dynobj: %zu entries, %zu observations; %zu LiDAR frames (%s): %zu points, %zu dynamic "
-              "(%.2f%%); %zu passed through; %.2f ms/frame\n",
-              reader.entriesRead(), sm.observations, sm.lidar, dynobj::mrpt::toString(opts.mode), sm.points,
-              sm.dynamic_points, sm.points ? 100.0 * static_cast<double>(sm.dynamic_points) / static_cast<double>(sm.points) : 0.0,
-              sm.passed_through, sm.lidar ? sm.detector_ms / static_cast<double>(sm.lidar) : 0.0);
+  std::printf(
+      "rawlog-dynobj: %zu entries, %zu observations; %zu LiDAR frames (%s): %zu points, %zu "
+      "dynamic "
+      "(%.2f%%); %zu passed through; %.2f ms/frame\n",
+      reader.entriesRead(), sm.observations, sm.lidar, dynobj::mrpt::toString(opts.mode), sm.points,
+      sm.dynamic_points,
+      sm.points ? 100.0 * static_cast<double>(sm.dynamic_points) / static_cast<double>(sm.points)
+                : 0.0,
+      sm.passed_through, sm.lidar ? sm.detector_ms / static_cast<double>(sm.lidar) : 0.0);
   for (const auto& [msg, n] : sm.warnings) std::printf("  warning (%zux): %s\n", n, msg.c_str());
   if (sm.lidar == 0 && sm.passed_through == 0)
     std::printf("  note: no LiDAR observation%s was found; the output is a copy of the input\n",

@@ -14,11 +14,11 @@ int main(int argc, char** argv) {
   dynobj::mrpt::RawlogReader rawlog(argv[1]);
   for (dynobj::mrpt::RawlogEntry e; rawlog.next(e);)
     for (auto& obs : e.observations()) {
-      filter.filter(obs);        // tags / removes the moving objects' points in place
+      filter.filter(obs);           // tags / removes the moving objects' points in place
       map.insertObservation(*obs);  // stock MRPT insertion sees the static points only
     }
   const auto& s = filter.summary();
-  std::cout << s.lidar << " LiDAR frames, " << s.dynamic_points << " dynamic points removed, map: "
-            << map.size() << " points\n";
+  std::cout << s.lidar << " LiDAR frames, " << s.dynamic_points
+            << " dynamic points removed, map: " << map.size() << " points\n";
   return 0;
 }

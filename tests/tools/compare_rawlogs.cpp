@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
     for (;;) {
       const bool ma = a.next(ea), mb = b.next(eb);
       if (ma != mb) {
-        std::printf("different number of entries (%zu vs %zu+)\n", a.entriesRead(), b.entriesRead());
+        std::printf("different number of entries (%zu vs %zu+)\n", a.entriesRead(),
+                    b.entriesRead());
         return 1;
       }
       if (!ma) break;
@@ -56,8 +57,9 @@ int main(int argc, char** argv) {
         compared++;
       }
     }
-    std::printf("same entries; %zu non-LiDAR observations byte-identical; %zu LiDAR observations skipped\n",
-                compared, lidar);
+    std::printf(
+        "same entries; %zu non-LiDAR observations byte-identical; %zu LiDAR observations skipped\n",
+        compared, lidar);
     return 0;
   } catch (const std::exception& e) {
     std::printf("compare_rawlogs: error: %s\n", e.what());

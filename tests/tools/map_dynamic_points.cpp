@@ -4,7 +4,8 @@
 // 0.25 m above the floor (so the floor under the actors' feet does not count). Compares a map built
 // from the raw rawlog with one built from the filtered rawlog and fails unless the filtered map
 // holds at most `max_ratio` times as many such points.
-//   map_dynamic_points <seq.rawlog> <seq.gt.labels> <seq.gt.tum> <raw_map.txt> <filtered_map.txt> <max_ratio>
+//   map_dynamic_points <seq.rawlog> <seq.gt.labels> <seq.gt.tum> <raw_map.txt> <filtered_map.txt>
+//   <max_ratio>
 #include <dynobj/core/LabelFile.h>
 #include <dynobj/core/TumFile.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
@@ -36,7 +37,9 @@ class NearSet {
 
  private:
   static long long key(const Eigen::Vector3d& p, int dx, int dy, int dz) {
-    const auto c = [](double v, int d) { return static_cast<long long>(std::floor(v / 0.2)) + d + (1 << 20); };
+    const auto c = [](double v, int d) {
+      return static_cast<long long>(std::floor(v / 0.2)) + d + (1 << 20);
+    };
     return (c(p.x(), dx) << 42) | (c(p.y(), dy) << 21) | c(p.z(), dz);
   }
   std::unordered_map<long long, std::vector<Eigen::Vector3d>> cells_;
@@ -53,7 +56,8 @@ std::size_t onActors(const std::string& map, const NearSet& dyn, std::size_t& to
     double x, y, z;
     if (!(ss >> x >> y >> z)) continue;
     total++;
-    const Eigen::Vector3d w(x, y, z);  // icp-slam's map frame = the world (odometry starts at the true pose)
+    const Eigen::Vector3d w(
+        x, y, z);  // icp-slam's map frame = the world (odometry starts at the true pose)
     n += w.z() > 0.25 && dyn.near(w);
   }
   return n;
@@ -63,21 +67,26 @@ std::size_t onActors(const std::string& map, const NearSet& dyn, std::size_t& to
 
 int main(int argc, char** argv) {
   if (argc != 7) {
-    std::fprintf(stderr, "usage: map_dynamic_points seq.rawlog seq.gt.labels seq.gt.tum raw_map.txt filtered_map.txt max_ratio\n");
+    std::fprintf(stderr,
+                 "usage: map_dynamic_points seq.rawlog seq.gt.labels seq.gt.tum raw_map.txt "
+                 "filtered_map.txt max_ratio\n");
     return 2;
   }
   try {
     const auto gt = dynobj::core::LabelFile::read(argv[2]);
     const auto poses = dynobj::core::readTumFile(argv[3]);
-    dynobj::mrpt::LidarObservationStream s(argv[1], dynobj::mrpt::ObservationConverter(), {"LIDAR", 0, 1000000});
+    dynobj::mrpt::LidarObservationStream s(argv[1], dynobj::mrpt::ObservationConverter(),
+                                           {"LIDAR", 0, 1000000});
     dynobj::mrpt::LidarObservationStream::Item it;
     NearSet dyn;
     std::size_t k = 0;
     while (s.next(it)) {
       const auto* p = dynobj::core::findPose(poses, it.frame.timestamp_ns);
-      if (!p || k >= gt.sweeps.size()) throw std::runtime_error("ground truth does not match the rawlog");
+      if (!p || k >= gt.sweeps.size())
+        throw std::runtime_error("ground truth does not match the rawlog");
       for (auto px : gt.sweeps[k].pixels) {
-        const cv::Vec3f q = it.frame.xyz(static_cast<int>(px) / it.frame.cols(), static_cast<int>(px) % it.frame.cols());
+        const cv::Vec3f q = it.frame.xyz(static_cast<int>(px) / it.frame.cols(),
+                                         static_cast<int>(px) % it.frame.cols());
         dyn.add(p->pose * Eigen::Vector3d(q[0], q[1], q[2]));
       }
       k++;
@@ -86,9 +95,11 @@ int main(int argc, char** argv) {
     const std::size_t raw = onActors(argv[4], dyn, raw_total);
     const std::size_t filtered = onActors(argv[5], dyn, filtered_total);
     const double max_ratio = std::stod(argv[6]);
-    std::printf("map points on moving actors: raw map %zu (of %zu), filtered map %zu (of %zu), ratio %.2f (max %.2f)\n",
-                raw, raw_total, filtered, filtered_total, raw ? static_cast<double>(filtered) / static_cast<double>(raw) : 0.0,
-                max_ratio);
+    std::printf(
+        "map points on moving actors: raw map %zu (of %zu), filtered map %zu (of %zu), ratio %.2f "
+        "(max %.2f)\n",
+        raw, raw_total, filtered, filtered_total,
+        raw ? static_cast<double>(filtered) / static_cast<double>(raw) : 0.0, max_ratio);
     return raw > 0 && static_cast<double>(filtered) <= max_ratio * static_cast<double>(raw) ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "map_dynamic_points: error: %s\n", e.what());

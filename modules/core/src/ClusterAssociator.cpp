@@ -12,9 +12,13 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("gate_distance", gate_distance);
 }
 
-void AssociationParams::validate() const { requirePositive("gate_distance", gate_distance); }
+void AssociationParams::validate() const {
+  requirePositive("gate_distance", gate_distance);
+}
 
-ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) { p_.validate(); }
+ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {
+  p_.validate();
+}
 
 Eigen::MatrixXd ClusterAssociator::costMatrix(const std::vector<Eigen::Vector3d>& current,
                                               const std::vector<Eigen::Vector3d>& predicted) const {
@@ -22,12 +26,13 @@ Eigen::MatrixXd ClusterAssociator::costMatrix(const std::vector<Eigen::Vector3d>
   const auto N = static_cast<Eigen::Index>(predicted.size());
   const double dmax = p_.gate_distance;
   Eigen::MatrixXd D(M + N, N + M);
-  D.topRightCorner(M, M).setConstant(2 * dmax);     // current cluster -> dummy: a new object
-  D.bottomLeftCorner(N, N).setConstant(2 * dmax);   // dummy -> track: the track is not seen
-  D.bottomRightCorner(N, M).setZero();              // dummy -> dummy
+  D.topRightCorner(M, M).setConstant(2 * dmax);    // current cluster -> dummy: a new object
+  D.bottomLeftCorner(N, N).setConstant(2 * dmax);  // dummy -> track: the track is not seen
+  D.bottomRightCorner(N, M).setZero();             // dummy -> dummy
   for (Eigen::Index m = 0; m < M; m++)
     for (Eigen::Index n = 0; n < N; n++) {
-      const double d = (current[static_cast<std::size_t>(m)] - predicted[static_cast<std::size_t>(n)]).norm();
+      const double d =
+          (current[static_cast<std::size_t>(m)] - predicted[static_cast<std::size_t>(n)]).norm();
       D(m, n) = d <= dmax ? d : forbidden();  // Eq. (9)
     }
   return D;
@@ -79,7 +84,8 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
       for (std::size_t i = 0; i < cur.size(); i++)
         if (a[i] >= 0 && a[i] < static_cast<int>(pred.size()) &&
             (cur[i] - pred[static_cast<std::size_t>(a[i])]).norm() <= p_.gate_distance)
-          out[rows[r0 + i].second] = static_cast<int>(cols[c0 + static_cast<std::size_t>(a[i])].second);
+          out[rows[r0 + i].second] =
+              static_cast<int>(cols[c0 + static_cast<std::size_t>(a[i])].second);
     }
     r0 = r1;
     c0 = c1;

@@ -2,10 +2,9 @@
 #include "dynobj/core/Clusterer.h"
 
 #include <Eigen/Eigenvalues>
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <nanoflann.hpp>
 
 #include "dynobj/core/Config.h"
 
@@ -16,15 +15,18 @@ namespace {
 struct PointsAdaptor {
   const std::vector<Eigen::Vector3f>& pts;
   std::size_t kdtree_get_point_count() const { return pts.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return pts[i][static_cast<Eigen::Index>(dim)]; }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const {
+    return pts[i][static_cast<Eigen::Index>(dim)];
+  }
   template <class BBOX>
   bool kdtree_get_bbox(BBOX& /*bb*/) const {
     return false;
   }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
-                                                   PointsAdaptor, 3>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
+                                        PointsAdaptor, 3>;
 
 }  // namespace
 
@@ -72,7 +74,7 @@ void computeClusterShape(const LidarFrame& f, Cluster& c) {
   }
   cov /= n;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);  // Eq. (22): PCA
-  c.main_direction = es.eigenvectors().col(1);                     // largest eigenvalue
+  c.main_direction = es.eigenvectors().col(1);                   // largest eigenvalue
   const double l1 = std::max(es.eigenvalues()(1), 0.0), l2 = std::max(es.eigenvalues()(0), 1e-6);
   c.elongation = std::sqrt(l1 / l2);
   double lo = 1e18, hi = -1e18;
@@ -89,24 +91,31 @@ void computeClusterShape(const LidarFrame& f, Cluster& c) {
   c.end_b = c.pixels.empty() ? c.centroid : Eigen::Vector3d(c.centroid + hi * axis);
 }
 
-Clusterer::Clusterer(const ClusteringParams& p) : p_(p) { p_.validate(); }
+Clusterer::Clusterer(const ClusteringParams& p) : p_(p) {
+  p_.validate();
+}
 
 namespace {
 
 /// 21 bits per axis of a cell index: keys order cells lexicographically by (x, y, z).
 std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
-  const auto k = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF; };
+  const auto k = [](std::int64_t v) {
+    return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF;
+  };
   return (k(x) << 42) | (k(y) << 21) | k(z);
 }
 
-std::int64_t cellOf(float v, double inv) { return static_cast<std::int64_t>(std::floor(v * inv)); }
+std::int64_t cellOf(float v, double inv) {
+  return static_cast<std::int64_t>(std::floor(v * inv));
+}
 
 constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};  ///< cellKey() never makes it (63 bits)
 
 /// Union-find root with path halving.
 int root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x)
-    x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    x = parent[static_cast<std::size_t>(x)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
   return x;
 }
 
@@ -129,8 +138,10 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
     if (m[i] && v[i]) pixels_.push_back(i);
   if (pixels_.empty()) return;
   std::vector<int>& label = label_;
-  if (p_.search == "image") clusterImage(f, label);
-  else clusterPoints(f, label);
+  if (p_.search == "image")
+    clusterImage(f, label);
+  else
+    clusterPoints(f, label);
   // Gather the components (labels are union-find roots) and keep those of a plausible size.
   count_.assign(pixels_.size(), 0);
   for (int l : label) count_[static_cast<std::size_t>(l)]++;
@@ -147,7 +158,8 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   }
   for (Cluster& c : out) computeClusterShape(f, c);
   if (p_.max_length > 0)
-    out.erase(std::remove_if(out.begin(), out.end(), [&](const Cluster& c) { return c.length > p_.max_length; }),
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const Cluster& c) { return c.length > p_.max_length; }),
               out.end());
 }
 
@@ -175,7 +187,8 @@ void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
         const int j = index_(r + dr, (c + dc + W) % W);
         if (j < 0) continue;
         const cv::Vec3f& q = f.xyz(r + dr, (c + dc + W) % W);
-        if (std::hypot(q[0] - p[0], q[1] - p[1]) > exy || std::abs(q[2] - p[2]) > ez) continue;  // Eq. (6)-(7)
+        if (std::hypot(q[0] - p[0], q[1] - p[1]) > exy || std::abs(q[2] - p[2]) > ez)
+          continue;  // Eq. (6)-(7)
         const int a = root(parent, static_cast<int>(i)), b = root(parent, j);
         if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
       }
@@ -224,8 +237,10 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
   std::vector<int>& parent = parent_;
   parent.resize(pts_.size());
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
-  if (p_.search == "kdtree") linkKdTree(parent);
-  else linkGrid(parent);
+  if (p_.search == "kdtree")
+    linkKdTree(parent);
+  else
+    linkGrid(parent);
   // Labels must be feature indices (roots of the features' own components) for cluster().
   std::vector<int>& first_feature = first_feature_;
   first_feature.assign(pts_.size(), -1);
@@ -268,8 +283,9 @@ void Clusterer::linkGrid(std::vector<int>& parent) {
   const double inv = 1.0 / eps;
   cells_.clear();
   for (std::size_t i = 0; i < pts_.size(); i++)
-    cells_.emplace_back(cellKey(cellOf(pts_[i].x(), inv), cellOf(pts_[i].y(), inv), cellOf(pts_[i].z(), inv)),
-                        static_cast<int>(i));
+    cells_.emplace_back(
+        cellKey(cellOf(pts_[i].x(), inv), cellOf(pts_[i].y(), inv), cellOf(pts_[i].z(), inv)),
+        static_cast<int>(i));
   std::sort(cells_.begin(), cells_.end());
   // Link in sorted order (points and union-find contiguous for the scans below), then map back.
   const std::size_t n = cells_.size();
@@ -309,7 +325,8 @@ void Clusterer::linkGrid(std::vector<int>& parent) {
   }
   // Each point's parent: the original index of its sorted root (a root maps to itself).
   for (std::size_t k = 0; k < n; k++)
-    parent[static_cast<std::size_t>(cells_[k].second)] = cells_[static_cast<std::size_t>(root(sparent_, static_cast<int>(k)))].second;
+    parent[static_cast<std::size_t>(cells_[k].second)] =
+        cells_[static_cast<std::size_t>(root(sparent_, static_cast<int>(k)))].second;
 }
 
 }  // namespace dynobj::core

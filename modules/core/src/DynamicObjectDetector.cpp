@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/DynamicObjectDetector.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <chrono>
+#include <opencv2/imgproc.hpp>
 
 #include "dynobj/core/Config.h"
 
@@ -32,7 +31,8 @@ void DetectorParams::load(const ::mrpt::config::CConfigFileBase& c, const std::s
     }
   };
   section(p.foreground, "foreground");
-  p.exclude_ground_features = readBool(c, prefix + "foreground", "exclude_ground", p.exclude_ground_features);
+  p.exclude_ground_features =
+      readBool(c, prefix + "foreground", "exclude_ground", p.exclude_ground_features);
   section(p.ground, "ground");
   section(p.ego_motion, "ego_motion");
   section(p.clustering, "clustering");
@@ -80,8 +80,9 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       free_space_(params.free_space, static_cast<std::size_t>(params.free_space.lookback + 1)),
       tracks_(params.tracking, params.movement.window),
       grower_(params.region_growing),
-      chain_(static_cast<std::size_t>(std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
-                                               params.free_space.lookback + 2))) {
+      chain_(static_cast<std::size_t>(
+          std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
+                   params.free_space.lookback + 2))) {
   params_.validate();
 }
 
@@ -111,8 +112,8 @@ EgoMotion DynamicObjectDetector::egoMotion(const LidarFrame& frame,
   return em;
 }
 
-const DetectionResult& DynamicObjectDetector::process(const LidarFrame& frame,
-                                                      const std::optional<Eigen::Isometry3d>& external_motion) {
+const DetectionResult& DynamicObjectDetector::process(
+    const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external_motion) {
   auto t = Clock::now();
   const auto t0 = t;
   DetectionResult& r = result_;
@@ -130,8 +131,8 @@ const DetectionResult& DynamicObjectDetector::process(const LidarFrame& frame,
   r.timings.ground = msSince(t);
 
   // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
-  foreground_.extract(frame, params_.exclude_ground_features ? ground_mask_ : cv::Mat_<std::uint8_t>(),
-                      r.features);
+  foreground_.extract(
+      frame, params_.exclude_ground_features ? ground_mask_ : cv::Mat_<std::uint8_t>(), r.features);
   r.timings.foreground = msSince(t);
 
   // III-B-1, Eq. (5): ego-motion between the previous frame and this one.
@@ -164,7 +165,8 @@ const DetectionResult& DynamicObjectDetector::process(const LidarFrame& frame,
       // A long object exempted from Eq. (23) as a rigid mover (a car) must prove its motion: a
       // background strip framed by moving occluders also "moves" rigidly, but no free space
       // was ever seen where it is.
-      d.static_surface = d.rigid ? !e.provesMotion(params_.free_space) : !e.supportsMotion(params_.free_space);
+      d.static_surface =
+          d.rigid ? !e.provesMotion(params_.free_space) : !e.supportsMotion(params_.free_space);
     }
     tracks_.decide(tr, d);
     if (tr.dynamic) {

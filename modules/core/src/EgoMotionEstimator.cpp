@@ -2,12 +2,11 @@
 #include "dynobj/core/EgoMotionEstimator.h"
 
 #include <Eigen/Geometry>
-#include <opencv2/core/hal/hal.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <opencv2/core/hal/hal.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "dynobj/core/Config.h"
 
@@ -104,7 +103,8 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
   intensity.convertTo(img8_, CV_8U);
   // Keypoints only on returns at least `border` px away from any no-return, and off `exclude`.
   if (p_.border > 0)
-    cv::erode(f.valid, mask_, cv::getStructuringElement(cv::MORPH_RECT, {2 * p_.border + 1, 2 * p_.border + 1}));
+    cv::erode(f.valid, mask_,
+              cv::getStructuringElement(cv::MORPH_RECT, {2 * p_.border + 1, 2 * p_.border + 1}));
   else
     f.valid.copyTo(mask_);
   if (!exclude.empty()) mask_.setTo(0, exclude);
@@ -137,7 +137,8 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
     keep.push_back(static_cast<int>(i));
   }
   out.descriptors.create(static_cast<int>(keep.size()), desc.cols, desc.type());
-  for (std::size_t k = 0; k < keep.size(); k++) desc.row(keep[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
+  for (std::size_t k = 0; k < keep.size(); k++)
+    desc.row(keep[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
 }
 
 EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<float>& intensity,
@@ -174,7 +175,8 @@ void EgoMotionEstimator::match(int cols, int window, std::vector<std::pair<int, 
   const int nb = (cols + kBucket - 1) / kBucket, reach = (window + kBucket - 1) / kBucket;
   buckets_.assign(static_cast<std::size_t>(nb), {});
   for (std::size_t j = 0; j < prev_.pixels.size(); j++)
-    buckets_[static_cast<std::size_t>((prev_.pixels[j] % cols) / kBucket)].push_back(static_cast<int>(j));
+    buckets_[static_cast<std::size_t>((prev_.pixels[j] % cols) / kBucket)].push_back(
+        static_cast<int>(j));
   const int bytes = cur_.descriptors.cols;
   for (int i = 0; i < cur_.descriptors.rows; i++) {
     const std::uint8_t* a = cur_.descriptors.ptr<std::uint8_t>(i);
@@ -230,8 +232,10 @@ void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, Eg
   for (int it = 0; it < needed; it++) {
     const int i0 = pick(rng_), i1 = pick(rng_), i2 = pick(rng_);
     if (i0 == i1 || i1 == i2 || i0 == i2) continue;
-    s3 = {src[static_cast<std::size_t>(i0)], src[static_cast<std::size_t>(i1)], src[static_cast<std::size_t>(i2)]};
-    d3 = {dst[static_cast<std::size_t>(i0)], dst[static_cast<std::size_t>(i1)], dst[static_cast<std::size_t>(i2)]};
+    s3 = {src[static_cast<std::size_t>(i0)], src[static_cast<std::size_t>(i1)],
+          src[static_cast<std::size_t>(i2)]};
+    d3 = {dst[static_cast<std::size_t>(i0)], dst[static_cast<std::size_t>(i1)],
+          dst[static_cast<std::size_t>(i2)]};
     if ((s3[1] - s3[0]).cross(s3[2] - s3[0]).norm() < 1e-3) continue;  // degenerate sample
     const int k = countInliers(rigidFit(s3, d3), in);
     if (k > best) {
@@ -239,7 +243,8 @@ void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, Eg
       best_in = in;
       const double w3 = std::pow(static_cast<double>(k) / n, 3);  // P(a sample is all inliers)
       if (p_.confidence < 1 && w3 > 0 && w3 < 1)
-        needed = std::min(needed, static_cast<int>(std::ceil(std::log(1 - p_.confidence) / std::log(1 - w3))));
+        needed = std::min(
+            needed, static_cast<int>(std::ceil(std::log(1 - p_.confidence) / std::log(1 - w3))));
     }
   }
   if (best < 3) return;
@@ -275,7 +280,8 @@ void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
     rows.push_back(static_cast<int>(i));
   }
   if (rows.size() == prev_.pixels.size()) return;
-  kept.descriptors.create(static_cast<int>(rows.size()), prev_.descriptors.cols, prev_.descriptors.type());
+  kept.descriptors.create(static_cast<int>(rows.size()), prev_.descriptors.cols,
+                          prev_.descriptors.type());
   for (std::size_t k = 0; k < rows.size(); k++)
     prev_.descriptors.row(rows[k]).copyTo(kept.descriptors.row(static_cast<int>(k)));
   prev_ = std::move(kept);

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/ForegroundExtractor.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "dynobj/core/Config.h"
 
@@ -14,8 +13,8 @@ namespace {
 /// Gaussian blur of the (2a+1) x (2b+1) kernel of Eq. (2)-(3), wrapping around horizontally
 /// (the image is a 360 degree scan) and reflecting at the top and bottom. `vert`, `padded` and
 /// `blurred` are scratch buffers kept by the caller (no allocation once sized).
-void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat& vert, cv::Mat& padded,
-                 cv::Mat& blurred, cv::Mat_<float>& dst) {
+void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat& vert,
+                 cv::Mat& padded, cv::Mat& blurred, cv::Mat_<float>& dst) {
   const int a = p.kernel_half_width, b = p.kernel_half_height;
   cv::copyMakeBorder(src, vert, b, b, 0, 0, cv::BORDER_REFLECT_101);
   cv::copyMakeBorder(vert, padded, 0, 0, a, a, cv::BORDER_WRAP);
@@ -48,7 +47,9 @@ void ForegroundParams::validate() const {
   if (stretch_high <= stretch_low) throwParameterError("stretch_high", "must exceed stretch_low");
 }
 
-ForegroundExtractor::ForegroundExtractor(const ForegroundParams& p) : p_(p) { p_.validate(); }
+ForegroundExtractor::ForegroundExtractor(const ForegroundParams& p) : p_(p) {
+  p_.validate();
+}
 
 const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
   const cv::Mat_<float>& src = frame.has_intensity ? frame.intensity : frame.range;
@@ -66,7 +67,8 @@ const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
   }
   auto pct = [&](double q) {
     const auto k = static_cast<std::size_t>(q / 100.0 * static_cast<double>(sample_.size() - 1));
-    std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(k), sample_.end());
+    std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(k),
+                     sample_.end());
     return static_cast<double>(sample_[k]);
   };
   // Linear stretch: the low percentile maps to 32 and the high one to 223, leaving head room so

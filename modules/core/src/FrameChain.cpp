@@ -16,7 +16,8 @@ void FrameChain::push(long index, const Eigen::Isometry3d& motion, bool reliable
 
 Eigen::Isometry3d FrameChain::between(long a, long b) const {
   if (!contains(a) || !contains(b) || a > b)
-    throw std::out_of_range("FrameChain::between(" + std::to_string(a) + ", " + std::to_string(b) + ")");
+    throw std::out_of_range("FrameChain::between(" + std::to_string(a) + ", " + std::to_string(b) +
+                            ")");
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (long i = a + 1; i <= b; i++) T = T * at(i).motion;
   return T;

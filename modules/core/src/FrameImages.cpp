@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/FrameImages.h"
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -85,7 +84,8 @@ void writePng(const std::string& path, const cv::Mat& image) {
   } catch (const cv::Exception& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  if (!ok) throw std::runtime_error("cannot write '" + path + "' (directory missing or not writable?)");
+  if (!ok)
+    throw std::runtime_error("cannot write '" + path + "' (directory missing or not writable?)");
 }
 
 void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_scale) {

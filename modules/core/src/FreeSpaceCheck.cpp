@@ -43,7 +43,7 @@ FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
 void FreeSpaceCheck::remember(long index, const LidarFrame& frame) {
   if (!p_.enabled) return;
   if (!proj_ || proj_->sensor().rows != frame.rows() || proj_->sensor().cols != frame.cols())
-    proj_.emplace(frame.sensor);  // built once, not per candidate
+    proj_.emplace(frame.sensor);     // built once, not per candidate
   if (ranges_.size() >= history_) {  // recycle the oldest buffer
     auto oldest = std::move(ranges_.front());
     ranges_.pop_front();
@@ -78,10 +78,14 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
     }
     const double seen = (*old)(r, c), expected = q.norm();
     const double tol = p_.margin + p_.range_factor * expected;
-    if (seen <= 0) e.unknown++;                        // no return then
-    else if (seen > expected + tol) e.free++;          // the ray went through: free space
-    else if (seen >= expected - tol) e.occupied++;     // a surface was already there
-    else e.unknown++;                                  // something nearer hid it
+    if (seen <= 0)
+      e.unknown++;  // no return then
+    else if (seen > expected + tol)
+      e.free++;  // the ray went through: free space
+    else if (seen >= expected - tol)
+      e.occupied++;  // a surface was already there
+    else
+      e.unknown++;  // something nearer hid it
   }
   return e;
 }

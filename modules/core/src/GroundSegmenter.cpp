@@ -20,7 +20,9 @@ void GroundParams::validate() const {
   requireInRange("max_step", max_step, 0, 1);
 }
 
-GroundSegmenter::GroundSegmenter(const GroundParams& p) : p_(p) { p_.validate(); }
+GroundSegmenter::GroundSegmenter(const GroundParams& p) : p_(p) {
+  p_.validate();
+}
 
 double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& ground) {
   ground.create(f.range.size());
@@ -66,7 +68,8 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
         // horizontal progress, plus a quarter of max_step for range noise. (A vertical surface
         // seen at close range, rows a few cm apart, must not climb as "small steps".)
         const double dxy = xy - last_xy_[cs], dz = std::abs(p[2] - last_z_[cs]);
-        is_ground = dxy > -0.25 * p_.max_step && dz <= tan_slope * std::max(dxy, 0.0) + 0.25 * p_.max_step;
+        is_ground =
+            dxy > -0.25 * p_.max_step && dz <= tan_slope * std::max(dxy, 0.0) + 0.25 * p_.max_step;
       }
       if (!is_ground) continue;
       // The base of a vertical structure (a foot, a wheel, the bottom of a wall) is at ground

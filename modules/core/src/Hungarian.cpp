@@ -61,12 +61,14 @@ std::vector<int> solveRowsLeCols(const Eigen::MatrixXd& a) {
 
 std::vector<int> solveAssignment(const Eigen::MatrixXd& cost) {
   if (!cost.allFinite()) throw std::invalid_argument("solveAssignment: costs must be finite");
-  if (cost.rows() == 0 || cost.cols() == 0) return std::vector<int>(static_cast<std::size_t>(cost.rows()), -1);
+  if (cost.rows() == 0 || cost.cols() == 0)
+    return std::vector<int>(static_cast<std::size_t>(cost.rows()), -1);
   if (cost.rows() <= cost.cols()) return solveRowsLeCols(cost);
   const std::vector<int> col_to_row = solveRowsLeCols(cost.transpose());
   std::vector<int> row_to_col(static_cast<std::size_t>(cost.rows()), -1);
   for (std::size_t c = 0; c < col_to_row.size(); c++)
-    if (col_to_row[c] >= 0) row_to_col[static_cast<std::size_t>(col_to_row[c])] = static_cast<int>(c);
+    if (col_to_row[c] >= 0)
+      row_to_col[static_cast<std::size_t>(col_to_row[c])] = static_cast<int>(c);
   return row_to_col;
 }
 

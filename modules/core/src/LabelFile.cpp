@@ -24,13 +24,17 @@ LabelFile LabelFile::read(const std::string& path) {
     char tail = 0;
     f.instances = text.rfind("# dynobj-instances ", 0) == 0;
     const int got = f.instances
-                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%d cols=%d %c", &f.rows, &f.cols, &tail)
-                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c", &f.rows, &f.cols, &tail);
+                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%d cols=%d %c",
+                                      &f.rows, &f.cols, &tail)
+                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c",
+                                      &f.rows, &f.cols, &tail);
     if (got != 2 || f.rows <= 0 || f.cols <= 0)
-      bad(path, 1, "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
-                       " or '# dynobj-instances v1 rows=<H> cols=<W>')");
+      bad(path, 1,
+          "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
+              " or '# dynobj-instances v1 rows=<H> cols=<W>')");
   }
-  const std::uint64_t n_pixels = static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
+  const std::uint64_t n_pixels =
+      static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
   while (std::getline(in, text)) {
     line_no++;
     if (text.empty()) bad(path, line_no, "empty line");
@@ -40,7 +44,8 @@ LabelFile LabelFile::read(const std::string& path) {
     if (!(ss >> s.timestamp_ns >> count) || count < 0)
       bad(path, line_no, "expected '<timestamp_ns> <count> <idx>...'");
     if (!f.sweeps.empty() && s.timestamp_ns <= f.sweeps.back().timestamp_ns)
-      bad(path, line_no, "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
+      bad(path, line_no,
+          "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
     s.pixels.reserve(static_cast<std::size_t>(count));
     long long idx = 0;
     char colon = 0;
@@ -49,8 +54,9 @@ LabelFile LabelFile::read(const std::string& path) {
       if (f.instances && !(ss >> colon >> id && colon == ':'))
         bad(path, line_no, "expected '<idx>:<id>' at pixel " + std::to_string(idx));
       if (idx < 0 || static_cast<std::uint64_t>(idx) >= n_pixels)
-        bad(path, line_no, "index " + std::to_string(idx) + " is outside the " +
-                               std::to_string(f.rows) + "x" + std::to_string(f.cols) + " image");
+        bad(path, line_no,
+            "index " + std::to_string(idx) + " is outside the " + std::to_string(f.rows) + "x" +
+                std::to_string(f.cols) + " image");
       if (!s.pixels.empty() && static_cast<std::uint32_t>(idx) <= s.pixels.back())
         bad(path, line_no, "indices are not strictly ascending at " + std::to_string(idx));
       s.pixels.push_back(static_cast<std::uint32_t>(idx));
@@ -58,8 +64,9 @@ LabelFile LabelFile::read(const std::string& path) {
     }
     if (!ss.eof()) bad(path, line_no, "non-numeric token");
     if (static_cast<long long>(s.pixels.size()) != count)
-      bad(path, line_no, "count says " + std::to_string(count) + " but " +
-                             std::to_string(s.pixels.size()) + " indices follow");
+      bad(path, line_no,
+          "count says " + std::to_string(count) + " but " + std::to_string(s.pixels.size()) +
+              " indices follow");
     f.sweeps.push_back(std::move(s));
   }
   return f;
@@ -96,7 +103,8 @@ void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::ui
   if (any_ && timestamp_ns <= last_ts_)
     throw std::invalid_argument("LabelFileWriter: timestamps must increase");
   if (ids.size() != (instances_ ? pixels.size() : 0))
-    throw std::invalid_argument("LabelFileWriter: an instance file needs one id per pixel, a label file none");
+    throw std::invalid_argument(
+        "LabelFileWriter: an instance file needs one id per pixel, a label file none");
   const auto n = static_cast<std::uint64_t>(rows_) * static_cast<std::uint64_t>(cols_);
   out_ << timestamp_ns << ' ' << pixels.size();
   for (std::size_t i = 0; i < pixels.size(); i++) {

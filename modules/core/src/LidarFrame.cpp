@@ -61,8 +61,7 @@ std::vector<std::uint8_t> LidarFrame::pointMaskFromPixelMask(
   for (std::size_t i = 0; i < point_pixel.size(); i++) {
     const std::int32_t px = point_pixel[i];
     if (px < 0) continue;
-    const std::uint8_t v =
-        continuous ? m[px] : pixel_mask(px / cols(), px % cols());
+    const std::uint8_t v = continuous ? m[px] : pixel_mask(px / cols(), px % cols());
     out[i] = v != 0 ? 1 : 0;
   }
   return out;

@@ -37,10 +37,20 @@ Confusion& Confusion::operator+=(const Confusion& o) {
   return *this;
 }
 
-std::optional<double> Confusion::precision() const { return ratio(tp, tp + fp); }
-std::optional<double> Confusion::recall() const { return ratio(tp, tp + fn); }
-std::optional<double> Confusion::iou() const { return ratio(tp, tp + fp + fn); }
-std::optional<double> Confusion::f1() const { return ratio(2 * tp, 2 * tp + fp + fn); }
-std::optional<double> Confusion::falsePositiveRate() const { return ratio(fp, fp + tn); }
+std::optional<double> Confusion::precision() const {
+  return ratio(tp, tp + fp);
+}
+std::optional<double> Confusion::recall() const {
+  return ratio(tp, tp + fn);
+}
+std::optional<double> Confusion::iou() const {
+  return ratio(tp, tp + fp + fn);
+}
+std::optional<double> Confusion::f1() const {
+  return ratio(2 * tp, 2 * tp + fp + fn);
+}
+std::optional<double> Confusion::falsePositiveRate() const {
+  return ratio(fp, fp + tn);
+}
 
 }  // namespace dynobj::core

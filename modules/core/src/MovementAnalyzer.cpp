@@ -2,7 +2,6 @@
 #include "dynobj/core/MovementAnalyzer.h"
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <vector>
 
@@ -32,10 +31,13 @@ void MovementParams::validate() const {
   requirePositive("max_speed", max_speed);
 }
 
-MovementAnalyzer::MovementAnalyzer(const MovementParams& p) : p_(p) { p_.validate(); }
+MovementAnalyzer::MovementAnalyzer(const MovementParams& p) : p_(p) {
+  p_.validate();
+}
 
-bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b, const Eigen::Isometry3d& T_ab,
-                                   const Eigen::Vector3d& v, double displacement) const {
+bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b,
+                                   const Eigen::Isometry3d& T_ab, const Eigen::Vector3d& v,
+                                   double displacement) const {
   // Departure from the paper: Eq. (23) alone rejects every elongated object moving along its
   // axis, cars included. A wall sliding into view has one end fixed (its real end, or an
   // occluding edge) while the other follows the view; a car's two ends both move as its
@@ -43,17 +45,19 @@ bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b, c
   if (p_.rigid_tolerance <= 0) return false;
   if ((a.end_b - a.end_a).norm() < 1e-6 || (b.end_b - b.end_a).norm() < 1e-6)
     return false;  // ends unknown: no exemption
-  const auto along = [&](const Eigen::Vector3d& p) { return p.head<2>().dot(v.head<2>().normalized()); };
-  double a0 = along(a.end_a), a1 = along(a.end_b), b0 = along(T_ab * b.end_a), b1 = along(T_ab * b.end_b);
+  const auto along = [&](const Eigen::Vector3d& p) {
+    return p.head<2>().dot(v.head<2>().normalized());
+  };
+  double a0 = along(a.end_a), a1 = along(a.end_b), b0 = along(T_ab * b.end_a),
+         b1 = along(T_ab * b.end_b);
   if (a0 > a1) std::swap(a0, a1);
   if (b0 > b1) std::swap(b0, b1);
   const double tol = p_.rigid_tolerance * displacement;
   return std::abs((b0 - a0) - displacement) <= tol && std::abs((b1 - a1) - displacement) <= tol;
 }
 
-MovementDecision MovementAnalyzer::analyse(const Window& window,
-                                           const FrameChain& chain, const Cluster& cluster,
-                                           double dt) const {
+MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChain& chain,
+                                           const Cluster& cluster, double dt) const {
   MovementDecision d;
   const auto k = static_cast<std::size_t>(p_.window);
   if (window.size() < k) return d;
@@ -67,7 +71,7 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
   for (std::size_t j = window.size() - k; j < window.size(); j++)
     cw.push_back(chain.between(first, window[j].frame) * window[j].centroid);
 
-  d.displacement = (cw.back() - cw.front()).norm();                   // Eq. (19)
+  d.displacement = (cw.back() - cw.front()).norm();                                  // Eq. (19)
   for (std::size_t j = 1; j < cw.size(); j++) d.path += (cw[j] - cw[j - 1]).norm();  // Eq. (20)
   d.speed = d.displacement / std::max(1e-6, static_cast<double>(last - first) * dt);
   d.candidate = d.displacement > p_.min_displacement && d.speed <= p_.max_speed;
@@ -78,12 +82,15 @@ MovementDecision MovementAnalyzer::analyse(const Window& window,
   if (d.candidate && cluster.elongation >= p_.long_object_elongation &&
       cluster.length >= p_.long_object_length) {
     const Eigen::Vector3d v = (cw.back() - cw.front()) / d.displacement;  // Eq. (21)
-    const Eigen::Matrix3d R = chain.between(first, last).linear();       // current -> first frame
-    const Eigen::Vector3d V = R * Eigen::Vector3d(cluster.main_direction.x(), cluster.main_direction.y(), 0);
+    const Eigen::Matrix3d R = chain.between(first, last).linear();        // current -> first frame
+    const Eigen::Vector3d V =
+        R * Eigen::Vector3d(cluster.main_direction.x(), cluster.main_direction.y(), 0);
     const Eigen::Vector2d vh = v.head<2>(), Vh = V.head<2>();
     if (vh.norm() > 1e-9 && Vh.norm() > 1e-9) {
-      d.angle = std::acos(std::min(1.0, std::abs(vh.normalized().dot(Vh.normalized()))));  // Eq. (23)
-      d.rigid = rigidMotion(window[window.size() - k], window.back(), chain.between(first, last), v, d.displacement);
+      d.angle =
+          std::acos(std::min(1.0, std::abs(vh.normalized().dot(Vh.normalized()))));  // Eq. (23)
+      d.rigid = rigidMotion(window[window.size() - k], window.back(), chain.between(first, last), v,
+                            d.displacement);
       d.long_object = d.angle < p_.long_object_angle && !d.rigid;
     }
   }

@@ -11,8 +11,7 @@ template <typename V>
 void checkSize(const V& v, std::size_t n, const char* name, bool may_be_empty) {
   if (v.size() == n || (may_be_empty && v.empty())) return;
   throw std::invalid_argument(std::string("PointCloud: '") + name + "' has " +
-                              std::to_string(v.size()) + " entries but x has " +
-                              std::to_string(n));
+                              std::to_string(v.size()) + " entries but x has " + std::to_string(n));
 }
 
 }  // namespace

@@ -23,7 +23,9 @@ void RegionGrowingParams::validate() const {
   requireInRange("max_pixels", max_pixels, 1, 10000000);
 }
 
-RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) { p_.validate(); }
+RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) {
+  p_.validate();
+}
 
 std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
                                     const std::vector<std::vector<int>>& seeds,
@@ -46,7 +48,8 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
     cy /= static_cast<double>(seeds[obj].size());
     double seed_radius = 0;  // large objects (cars) may grow farther than small ones
     for (int px : seeds[obj])
-      seed_radius = std::max(seed_radius, std::hypot(f.xyz(px / W, px % W)[0] - cx, f.xyz(px / W, px % W)[1] - cy));
+      seed_radius = std::max(
+          seed_radius, std::hypot(f.xyz(px / W, px % W)[0] - cx, f.xyz(px / W, px % W)[1] - cy));
     const double extent = std::max(p_.max_extent, seed_radius + p_.max_extent / 2);
     queue_.clear();
     for (int px : seeds[obj]) {
@@ -56,7 +59,8 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
       mask(r, c) = 255;
       queue_.push_back(px);
     }
-    for (std::size_t head = 0; head < queue_.size() && static_cast<int>(queue_.size()) < p_.max_pixels; head++) {
+    for (std::size_t head = 0;
+         head < queue_.size() && static_cast<int>(queue_.size()) < p_.max_pixels; head++) {
       const int r = queue_[head] / W, c = queue_[head] % W;
       const cv::Vec3f& p = f.xyz(r, c);
       const double rng = f.range(r, c);

@@ -121,7 +121,8 @@ std::vector<int> SensorModel::laserToRow() const {
   std::vector<int> order(beam_elevations.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return beam_elevations[static_cast<std::size_t>(a)] > beam_elevations[static_cast<std::size_t>(b)];
+    return beam_elevations[static_cast<std::size_t>(a)] >
+           beam_elevations[static_cast<std::size_t>(b)];
   });
   for (std::size_t row = 0; row < order.size(); row++)
     out[static_cast<std::size_t>(order[row])] = static_cast<int>(row);

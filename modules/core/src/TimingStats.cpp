@@ -35,7 +35,8 @@ void TimingStats::print(std::ostream& out) const {
   out << "  stage              median ms   p99 ms\n";
   for (const char* s : kStages) {
     if (!ms_.count(s)) continue;
-    std::snprintf(line, sizeof(line), "  %-18s %9.3f %8.3f\n", s, percentile(s, 50), percentile(s, 99));
+    std::snprintf(line, sizeof(line), "  %-18s %9.3f %8.3f\n", s, percentile(s, 50),
+                  percentile(s, 99));
     out << line;
   }
 }

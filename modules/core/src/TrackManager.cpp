@@ -104,7 +104,8 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
     if (!p_.prediction) t.state.head<2>() = c.head<2>();  // the paper: no filtering
     t.window.emplace_back(frame, c, clusters[m].end_a, clusters[m].end_b);
     if (t.window.size() > window_)
-      t.window.erase(t.window.begin(), t.window.begin() + static_cast<std::ptrdiff_t>(t.window.size() - window_));
+      t.window.erase(t.window.begin(),
+                     t.window.begin() + static_cast<std::ptrdiff_t>(t.window.size() - window_));
   }
   const int max_missed = p_.prediction ? p_.max_missed : 0;
   std::vector<Track> kept;

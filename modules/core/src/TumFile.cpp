@@ -21,7 +21,8 @@ std::vector<StampedPose> readTumFile(const std::string& path) {
     std::string ts;
     double x, y, z, qx, qy, qz, qw;
     if (!(ss >> ts >> x >> y >> z >> qx >> qy >> qz >> qw))
-      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected 'timestamp tx ty tz qx qy qz qw'");
+      throw std::runtime_error(path + ":" + std::to_string(n) +
+                               ": expected 'timestamp tx ty tz qx qy qz qw'");
     // Seconds with a fractional part, parsed exactly into nanoseconds.
     const auto dot = ts.find('.');
     std::int64_t sec = 0, frac = 0;
@@ -49,8 +50,9 @@ std::vector<StampedPose> readTumFile(const std::string& path) {
 
 const StampedPose* findPose(const std::vector<StampedPose>& poses, std::int64_t t,
                             std::int64_t tolerance_ns) {
-  const auto it = std::lower_bound(poses.begin(), poses.end(), t,
-                                   [](const StampedPose& p, std::int64_t v) { return p.timestamp_ns < v; });
+  const auto it =
+      std::lower_bound(poses.begin(), poses.end(), t,
+                       [](const StampedPose& p, std::int64_t v) { return p.timestamp_ns < v; });
   const StampedPose* best = nullptr;
   std::int64_t best_d = tolerance_ns + 1;
   for (auto c : {it, it == poses.begin() ? it : it - 1})

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/core/Clusterer.h>
-#include <gtest/gtest.h>
-
 #include <dynobj/core/Config.h>
+#include <gtest/gtest.h>
 
 #include <functional>
 #include <map>
@@ -52,8 +51,8 @@ TEST(Clusterer, TwoGroupsOneMetreApartGiveTwoClusters) {
 TEST(Clusterer, HorizontalAndVerticalThresholdsAreSeparate) {
   // Two points 0.3 m apart horizontally (< 0.35) and two 0.5 m apart vertically (< 0.6), and one
   // 0.4 m apart horizontally (> 0.35): Eq. (6)-(7) with eps = (0.35, 0.6).
-  const LidarFrame f = pointsFrame({{8, 10, 5, 0, 0}, {8, 12, 5, 0.3f, 0}, {5, 10, 5, 0, 0.5f},
-                                    {8, 16, 5, 0.7f, 0}});
+  const LidarFrame f = pointsFrame(
+      {{8, 10, 5, 0, 0}, {8, 12, 5, 0.3f, 0}, {5, 10, 5, 0, 0.5f}, {8, 16, 5, 0.7f, 0}});
   ClusteringParams p;
   p.min_points = 1;
   std::vector<Cluster> out;
@@ -99,7 +98,9 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
   for (int trial = 0; trial < 20; trial++) {
     std::vector<std::array<float, 5>> pts;
     const int n = 50 + 30 * trial;
-    for (int i = 0; i < n; i++) pts.push_back({static_cast<float>(i / 64), static_cast<float>(i % 64), xy(rng), xy(rng), z(rng)});
+    for (int i = 0; i < n; i++)
+      pts.push_back(
+          {static_cast<float>(i / 64), static_cast<float>(i % 64), xy(rng), xy(rng), z(rng)});
     const LidarFrame f = pointsFrame(pts);
     ClusteringParams p;
     p.voxel = 0;
@@ -108,7 +109,9 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
     p.max_length = 0;
     std::vector<int> parent(pts.size());
     for (int i = 0; i < n; i++) parent[i] = i;
-    const std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+    const std::function<int(int)> find = [&](int x) {
+      return parent[x] == x ? x : parent[x] = find(parent[x]);
+    };
     for (int i = 0; i < n; i++)
       for (int j = i + 1; j < n; j++)
         if (std::hypot(pts[i][2] - pts[j][2], pts[i][3] - pts[j][3]) <= p.horizontal_distance &&
@@ -116,7 +119,8 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
           parent[find(i)] = find(j);
     std::set<std::set<int>> expected;
     std::map<int, std::set<int>> groups;
-    for (int i = 0; i < n; i++) groups[find(i)].insert(static_cast<int>(pts[i][0]) * 64 + static_cast<int>(pts[i][1]));
+    for (int i = 0; i < n; i++)
+      groups[find(i)].insert(static_cast<int>(pts[i][0]) * 64 + static_cast<int>(pts[i][1]));
     for (auto& [root, g] : groups) expected.insert(g);
     for (const char* search : {"grid", "kdtree"}) {
       p.search = search;
@@ -124,7 +128,8 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
       Clusterer(p).cluster(f, f.valid, out);
       std::set<std::set<int>> got;
       for (const Cluster& c : out) got.insert(std::set<int>(c.pixels.begin(), c.pixels.end()));
-      EXPECT_EQ(got, expected) << search << ", trial " << trial << ", " << expected.size() << " clusters";
+      EXPECT_EQ(got, expected) << search << ", trial " << trial << ", " << expected.size()
+                               << " clusters";
     }
   }
 }
@@ -143,7 +148,8 @@ TEST(Clusterer, UnknownSearchIsAnErrorNamingTheKey) {
 
 TEST(Clusterer, PcaOfAWall) {
   std::vector<std::array<float, 5>> pts;
-  for (int i = 0; i < 20; i++) pts.push_back({8, static_cast<float>(10 + i), 5, -1.0f + 0.1f * i, 0});
+  for (int i = 0; i < 20; i++)
+    pts.push_back({8, static_cast<float>(10 + i), 5, -1.0f + 0.1f * i, 0});
   const LidarFrame f = pointsFrame(pts);
   ClusteringParams p;
   std::vector<Cluster> out;

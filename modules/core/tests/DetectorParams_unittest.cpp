@@ -27,7 +27,8 @@ TEST(DetectorParams, ShippedIniEqualsTheDefaults) {
   all.getAllSections(sections);
   for (const auto& s : sections) {
     all.getAllKeys(s, keys);
-    for (const auto& k : keys) EXPECT_TRUE(cfg.keyExists(s, k)) << "[" << s << "] " << k << " missing from dynobj.ini";
+    for (const auto& k : keys)
+      EXPECT_TRUE(cfg.keyExists(s, k)) << "[" << s << "] " << k << " missing from dynobj.ini";
   }
 }
 
@@ -61,7 +62,8 @@ TEST(DetectorParams, BadValuesNameSectionAndKey) {
     p.load(m2);
     FAIL();
   } catch (const ParameterError& e) {
-    EXPECT_NE(std::string(e.what()).find("[region_growing] distance"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("[region_growing] distance"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -88,7 +90,8 @@ TEST(TimingStats, MedianAndP99) {
 }
 
 TEST(DetectorParams, SensorPresetOverridesOnlyItsKeys) {
-  ::mrpt::config::CConfigFile cfg(std::string(DYNOBJ_SHARE_DIR) + "/config/dynobj-os0-128-2048.ini");
+  ::mrpt::config::CConfigFile cfg(std::string(DYNOBJ_SHARE_DIR) +
+                                  "/config/dynobj-os0-128-2048.ini");
   DetectorParams p;
   p.load(cfg);
   EXPECT_EQ(p.foreground.kernel_half_width, 14);

@@ -52,7 +52,7 @@ TEST(EgoMotionEstimator, FeaturelessScenesFailCleanly) {
 TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
   const auto s = dynobj::test::smallSensor(32, 512);
   Scene before, after;
-  before.posts = {{5, 0, 0.3, 1.8}};   // a post that stays
+  before.posts = {{5, 0, 0.3, 1.8}};                   // a post that stays
   after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};  // and one that arrived at (4, 3)
   const LidarFrame f0 = dynobj::test::render(before, s, true, 1);
   const LidarFrame f1 = dynobj::test::render(after, s, true, 2);

@@ -48,7 +48,7 @@ TEST(ForegroundExtractor, AbsoluteModeFindsDarkObjects) {
 }
 
 TEST(ForegroundExtractor, NoReturnsAndExcludedPixelsGiveNoFeatures) {
-  LidarFrame f = squareFrame(100);  // flat
+  LidarFrame f = squareFrame(100);                  // flat
   for (int c = 0; c < 60; c++) f.clearPixel(5, c);  // a row of no-returns must not create edges
   cv::Mat_<std::uint8_t> t;
   ForegroundExtractor().extract(f, {}, t);

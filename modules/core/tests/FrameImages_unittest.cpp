@@ -13,7 +13,7 @@ TEST(FrameImages, PercentileStretchIsLinearAndKeepsNoReturnsBlack) {
   EXPECT_EQ(out(0, 0), 1);    // lowest return -> 1, never 0
   EXPECT_EQ(out(0, 1), 128);  // 1 + (20-10) * 254/20
   EXPECT_EQ(out(0, 2), 255);
-  EXPECT_EQ(out(0, 3), 0);    // masked out
+  EXPECT_EQ(out(0, 3), 0);  // masked out
 }
 
 TEST(FrameImages, ScaleRowsRepeatsRows) {

@@ -45,7 +45,8 @@ TEST(Hungarian, EqualsBruteForceOnRandomMatrices) {
     const int r = dim(rng), c = dim(rng);
     Eigen::MatrixXd m(r, c);
     for (int i = 0; i < r; i++)
-      for (int j = 0; j < c; j++) m(i, j) = (trial % 3 == 0) ? std::floor(val(rng)) : val(rng);  // ties too
+      for (int j = 0; j < c; j++)
+        m(i, j) = (trial % 3 == 0) ? std::floor(val(rng)) : val(rng);  // ties too
     const auto a = solveAssignment(m);
     ASSERT_EQ(a.size(), static_cast<std::size_t>(r));
     std::vector<int> seen;

@@ -9,7 +9,9 @@ using namespace dynobj::core;
 
 namespace {
 
-std::string temp(const std::string& name) { return ::mrpt::system::getTempFileName() + name; }
+std::string temp(const std::string& name) {
+  return ::mrpt::system::getTempFileName() + name;
+}
 
 std::string writeText(const std::string& text) {
   const auto p = temp(".labels");
@@ -60,7 +62,8 @@ TEST(LabelFile, UnclosedWriterLeavesNoFile) {
 
 TEST(LabelFile, ErrorsNameTheLine) {
   EXPECT_NE(errorOf("").find(":1: empty"), std::string::npos);
-  EXPECT_NE(errorOf("# dynobj-labels v2 rows=4 cols=8\n").find(":1: bad header"), std::string::npos);
+  EXPECT_NE(errorOf("# dynobj-labels v2 rows=4 cols=8\n").find(":1: bad header"),
+            std::string::npos);
   const std::string h = "# dynobj-labels v1 rows=4 cols=8\n";
   EXPECT_NE(errorOf(h + "10 1 32\n").find(":2: index 32 is outside the 4x8"), std::string::npos);
   EXPECT_NE(errorOf(h + "10 2 5 3\n").find(":2: indices are not strictly ascending"),
@@ -96,7 +99,10 @@ TEST(LabelFile, InstanceFileRoundTripAndErrors) {
   ASSERT_EQ(f.sweeps.size(), 2u);
   EXPECT_EQ(f.sweeps[1].pixels, (std::vector<std::uint32_t>{3, 9}));
   EXPECT_EQ(f.sweeps[1].ids, (std::vector<std::int32_t>{7, 2}));
-  EXPECT_NE(errorOf("# dynobj-instances v1 rows=4 cols=8\n100 1 3\n").find(":2: expected '<idx>:<id>' at pixel 3"),
+  EXPECT_NE(errorOf("# dynobj-instances v1 rows=4 cols=8\n100 1 3\n")
+                .find(":2: expected '<idx>:<id>' at pixel 3"),
             std::string::npos);
-  EXPECT_TRUE(LabelFile::read(writeText("# dynobj-labels v1 rows=4 cols=8\n100 1 3\n")).sweeps[0].ids.empty());
+  EXPECT_TRUE(LabelFile::read(writeText("# dynobj-labels v1 rows=4 cols=8\n100 1 3\n"))
+                  .sweeps[0]
+                  .ids.empty());
 }

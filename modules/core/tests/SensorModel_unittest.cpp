@@ -74,10 +74,12 @@ TEST(SensorModel, ErrorsNameTheKey) {
   EXPECT_NE(errorOf("[sensor]\nrows = 4\ncols = 16\nelevation_top = -5\nelevation_bottom = 5\n")
                 .find("elevation_top"),
             std::string::npos);
-  EXPECT_NE(errorOf("[sensor]\nrows = 4\ncols = 16\nbeam_elevations = 1 2 3\n").find("beam_elevations"),
-            std::string::npos);
-  EXPECT_NE(errorOf("[sensor]\nrows = 2\ncols = 16\nbeam_elevations = 1 1\n").find("beam_elevations"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf("[sensor]\nrows = 4\ncols = 16\nbeam_elevations = 1 2 3\n").find("beam_elevations"),
+      std::string::npos);
+  EXPECT_NE(
+      errorOf("[sensor]\nrows = 2\ncols = 16\nbeam_elevations = 1 1\n").find("beam_elevations"),
+      std::string::npos);
   EXPECT_NE(errorOf("[sensor]\nrows = 4\ncols = 16\nelevation_top=1\nelevation_bottom=-1\n"
                     "max_range = -3\n")
                 .find("max_range"),
@@ -102,7 +104,8 @@ TEST(SensorModel, EveryShippedPresetLoads) {
     int rows, cols;
   };
   for (const Expect& e : {Expect{"os0-64.ini", 64, 1024}, Expect{"os0-128.ini", 128, 1024},
-                          Expect{"os0-64-512.ini", 64, 512}, Expect{"os0-128-2048.ini", 128, 2048}, Expect{"os1-64.ini", 64, 1024}, Expect{"vlp-16.ini", 16, 1800},
+                          Expect{"os0-64-512.ini", 64, 512}, Expect{"os0-128-2048.ini", 128, 2048},
+                          Expect{"os1-64.ini", 64, 1024}, Expect{"vlp-16.ini", 16, 1800},
                           Expect{"hdl-32.ini", 32, 2048}, Expect{"hdl-64.ini", 64, 2048}}) {
     SCOPED_TRACE(e.file);
     const SensorModel m = SensorModel::fromFile(dir + e.file);

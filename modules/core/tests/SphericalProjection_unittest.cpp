@@ -116,12 +116,12 @@ TEST(SphericalProjection, BeamTableUsesNearestBeam) {
 TEST(SphericalProjection, NearestPointWinsAndAllPointsStayMapped) {
   const SphericalProjection p(tinySensor());
   PointCloud cloud;
-  cloud.push_back(5, 0, 0, 50);   // pixel (2,4), far
-  cloud.push_back(3, 0, 0, 30);   // same pixel, nearer: shown
-  cloud.push_back(4, 0, 0, 40);   // same pixel, middle
+  cloud.push_back(5, 0, 0, 50);  // pixel (2,4), far
+  cloud.push_back(3, 0, 0, 30);  // same pixel, nearer: shown
+  cloud.push_back(4, 0, 0, 40);  // same pixel, middle
   cloud.push_back(std::numeric_limits<float>::quiet_NaN(), 0, 0, 1);
-  cloud.push_back(0, 0, 0, 1);    // origin = invalid (MRPT convention)
-  cloud.push_back(0, 0, 10, 1);   // straight up: outside FOV
+  cloud.push_back(0, 0, 0, 1);   // origin = invalid (MRPT convention)
+  cloud.push_back(0, 0, 10, 1);  // straight up: outside FOV
   LidarFrame f;
   const auto st = p.project(cloud, f);
   EXPECT_EQ(st.input_points, 6u);

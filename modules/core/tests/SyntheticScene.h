@@ -49,8 +49,10 @@ inline core::LidarFrame render(const Scene& scene, const core::SensorModel& s, b
   const Eigen::Matrix3d R = scene.sensor.linear();
   for (int r = 0; r < s.rows; r++)
     for (int c = 0; c < s.cols; c++) {
-      const double az = -M_PI + (c + 0.5) * 2 * M_PI / s.cols, el = elev[static_cast<std::size_t>(r)];
-      const Eigen::Vector3d ds(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      const double az = -M_PI + (c + 0.5) * 2 * M_PI / s.cols,
+                   el = elev[static_cast<std::size_t>(r)];
+      const Eigen::Vector3d ds(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                               std::sin(el));
       const Eigen::Vector3d d = R * ds;
       double best = 1e9;
       float inten = 0;
@@ -58,7 +60,8 @@ inline core::LidarFrame render(const Scene& scene, const core::SensorModel& s, b
         const double t = (scene.floor_z - o.z()) / d.z();
         if (t > 0 && t < best) {
           best = t;
-          const auto tile = static_cast<long>(std::floor(o.x() + t * d.x()) + std::floor(o.y() + t * d.y()));
+          const auto tile =
+              static_cast<long>(std::floor(o.x() + t * d.x()) + std::floor(o.y() + t * d.y()));
           inten = flat ? scene.floor_intensity : (tile % 2 ? 90.f : 30.f);
         }
       }
@@ -74,8 +77,11 @@ inline core::LidarFrame render(const Scene& scene, const core::SensorModel& s, b
                                               std::floor((o.z() + t * d.z()) / 0.5));
           const auto fine = static_cast<long>(std::floor((wall_az + M_PI) / (2 * M_PI) * 180) * 7 +
                                               std::floor((o.z() + t * d.z()) / 0.2) * 3);
-          auto hash = [](long v) { return static_cast<int>((static_cast<unsigned long>(v) * 2654435761UL >> 7) % 160); };
-          inten = flat ? scene.wall_intensity : static_cast<float>(40 + hash(cell) + hash(fine) / 4);
+          auto hash = [](long v) {
+            return static_cast<int>((static_cast<unsigned long>(v) * 2654435761UL >> 7) % 160);
+          };
+          inten =
+              flat ? scene.wall_intensity : static_cast<float>(40 + hash(cell) + hash(fine) / 4);
         }
       }
       for (const Post& p : scene.posts) {
@@ -86,12 +92,14 @@ inline core::LidarFrame render(const Scene& scene, const core::SensorModel& s, b
         if (disc < 0 || a < 1e-12) continue;
         const double t = (-b - std::sqrt(disc)) / a;
         const double z = o.z() + t * d.z();
-        if (t > 0 && t < best && z >= scene.floor_z && z <= scene.floor_z + p.height) best = t, inten = p.intensity;
+        if (t > 0 && t < best && z >= scene.floor_z && z <= scene.floor_z + p.height)
+          best = t, inten = p.intensity;
       }
       if (best > s.max_range) continue;
       const Eigen::Vector3d q = ds * best;
-      cloud.push_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()),
-                      inten, static_cast<std::uint16_t>(r), static_cast<std::uint16_t>(c));
+      cloud.push_back(static_cast<float>(q.x()), static_cast<float>(q.y()),
+                      static_cast<float>(q.z()), inten, static_cast<std::uint16_t>(r),
+                      static_cast<std::uint16_t>(c));
     }
   core::LidarFrame f;
   core::SphericalProjection(s).organize(cloud, f);

@@ -18,12 +18,12 @@ TEST(ClusterAssociator, CostMatrixHasDummies) {
   const auto D = a.costMatrix({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)});  // M = 2, N = 1
   ASSERT_EQ(D.rows(), 3);
   ASSERT_EQ(D.cols(), 3);
-  EXPECT_DOUBLE_EQ(D(0, 0), 0.5);          // within d_max
+  EXPECT_DOUBLE_EQ(D(0, 0), 0.5);            // within d_max
   EXPECT_DOUBLE_EQ(D(1, 0), a.forbidden());  // beyond d_max (Eq. 9)
-  EXPECT_DOUBLE_EQ(D(0, 1), 2.0);          // cluster -> dummy: 2 d_max
+  EXPECT_DOUBLE_EQ(D(0, 1), 2.0);            // cluster -> dummy: 2 d_max
   EXPECT_DOUBLE_EQ(D(1, 2), 2.0);
-  EXPECT_DOUBLE_EQ(D(2, 0), 2.0);          // dummy -> track
-  EXPECT_DOUBLE_EQ(D(2, 1), 0.0);          // dummy -> dummy
+  EXPECT_DOUBLE_EQ(D(2, 0), 2.0);  // dummy -> track
+  EXPECT_DOUBLE_EQ(D(2, 1), 0.0);  // dummy -> dummy
   EXPECT_EQ(a.associate({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)}), (std::vector<int>{0, -1}));
 }
 
@@ -119,17 +119,18 @@ TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
   const FrameChain chain = walkingChain(5);
   Window w;
   // A wall along X beside the robot: its visible part (and centroid) slides forward with it.
-  for (long i = 0; i < 5; i++) w.emplace_back(i, V3(2.0, 3.0, 0));  // same place in each sensor frame
+  for (long i = 0; i < 5; i++)
+    w.emplace_back(i, V3(2.0, 3.0, 0));  // same place in each sensor frame
   Cluster wall;
   wall.main_direction = Eigen::Vector2d(1, 0);
   wall.elongation = 8;
   wall.length = 6;
   const auto d = m.analyse(w, chain, wall, 0.1);
-  EXPECT_TRUE(d.candidate);      // moves 0.4 m in the first frame's coordinates
+  EXPECT_TRUE(d.candidate);  // moves 0.4 m in the first frame's coordinates
   EXPECT_NEAR(d.angle, 0.0, 1e-9);
   EXPECT_TRUE(d.long_object);
   EXPECT_FALSE(d.moving());
-  Cluster across = wall;         // the same motion across the object's axis is real motion
+  Cluster across = wall;  // the same motion across the object's axis is real motion
   across.main_direction = Eigen::Vector2d(0, 1);
   EXPECT_TRUE(m.analyse(w, chain, across, 0.1).moving());
 }

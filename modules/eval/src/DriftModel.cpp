@@ -14,7 +14,8 @@ DriftParams DriftParams::parse(const std::string& text) {
   while (std::getline(ss, item, ',')) {
     if (item.empty()) continue;
     const auto eq = item.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument("drift: '" + item + "' is not key=value");
+    if (eq == std::string::npos)
+      throw std::invalid_argument("drift: '" + item + "' is not key=value");
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
     double v = 0;
     try {
@@ -24,16 +25,22 @@ DriftParams DriftParams::parse(const std::string& text) {
     } catch (const std::exception&) {
       throw std::invalid_argument("drift: " + key + ": '" + value + "' is not a number");
     }
-    if (key == "sigma_xy") p.sigma_xy = v;
-    else if (key == "sigma_yaw_deg") p.sigma_yaw_deg = v;
-    else if (key == "bias_scale") p.bias_scale = v;
-    else if (key == "bias_yaw_deg") p.bias_yaw_deg = v;
-    else if (key == "seed") p.seed = static_cast<int>(v);
+    if (key == "sigma_xy")
+      p.sigma_xy = v;
+    else if (key == "sigma_yaw_deg")
+      p.sigma_yaw_deg = v;
+    else if (key == "bias_scale")
+      p.bias_scale = v;
+    else if (key == "bias_yaw_deg")
+      p.bias_yaw_deg = v;
+    else if (key == "seed")
+      p.seed = static_cast<int>(v);
     else
       throw std::invalid_argument("drift: unknown key '" + key +
                                   "' (sigma_xy, sigma_yaw_deg, bias_scale, bias_yaw_deg, seed)");
   }
-  if (p.sigma_xy < 0 || p.sigma_yaw_deg < 0) throw std::invalid_argument("drift: sigmas must be >= 0");
+  if (p.sigma_xy < 0 || p.sigma_yaw_deg < 0)
+    throw std::invalid_argument("drift: sigmas must be >= 0");
   return p;
 }
 
@@ -52,7 +59,8 @@ Eigen::Isometry3d DriftModel::corrupt(const Eigen::Isometry3d& motion) {
   Eigen::Isometry3d out = motion;
   out.translation() = motion.translation() * (1.0 + p_.bias_scale) +
                       Eigen::Vector3d(p_.sigma_xy * g(rng_), p_.sigma_xy * g(rng_), 0.0);
-  out.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * motion.linear();
+  out.linear() =
+      Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * motion.linear();
   return out;
 }
 

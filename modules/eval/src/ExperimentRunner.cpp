@@ -21,7 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ifExists(const std::string& path) { return fs::exists(path) ? path : std::string(); }
+std::string ifExists(const std::string& path) {
+  return fs::exists(path) ? path : std::string();
+}
 
 /// MRPT's CPointCloudFilterByDistance over the valid pixels of each frame (default options:
 /// a point is deleted when the previous keyframe has no point within min_dist of it).
@@ -78,7 +80,8 @@ SequenceFiles SequenceFiles::locate(const std::string& path) {
   const fs::path base = fs::path(s.rawlog).replace_extension();
   s.name = base.filename().string();
   s.labels = base.string() + ".gt.labels";
-  if (!fs::exists(s.labels)) throw EvaluationError("no ground truth '" + s.labels + "' beside the rawlog");
+  if (!fs::exists(s.labels))
+    throw EvaluationError("no ground truth '" + s.labels + "' beside the rawlog");
   s.instances = ifExists(base.string() + ".gt.instances");
   s.objects = ifExists(base.string() + ".gt.objects.csv");
   s.poses = ifExists(base.string() + ".gt.tum");
@@ -110,15 +113,18 @@ std::string RunOptions::describe(const std::string& mode, const DriftParams& dri
   if (mode == "intensity") return "this detector, own intensity ego-motion (no odometry)";
   if (mode == "gt-ego") return "this detector, ground-truth ego-motion (upper bound)";
   if (mode == "drift") return "this detector, drifting odometry (" + drift.toString() + ")";
-  if (mode == "mrpt-distance") return "MRPT CPointCloudFilterByDistance (defaults), ground-truth poses";
+  if (mode == "mrpt-distance")
+    return "MRPT CPointCloudFilterByDistance (defaults), ground-truth poses";
   return mode;
 }
 
 RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
-  if (!RunOptions::modes().count(opts.mode)) throw EvaluationError("unknown mode '" + opts.mode + "'");
+  if (!RunOptions::modes().count(opts.mode))
+    throw EvaluationError("unknown mode '" + opts.mode + "'");
   const bool needs_poses = opts.mode != "intensity";
   if (needs_poses && seq.poses.empty())
-    throw EvaluationError("mode '" + opts.mode + "' needs ground-truth poses (" + seq.name + ".gt.tum)");
+    throw EvaluationError("mode '" + opts.mode + "' needs ground-truth poses (" + seq.name +
+                          ".gt.tum)");
   const core::LabelFile truth = core::LabelFile::read(seq.labels);
   std::optional<core::LabelFile> instances;
   std::optional<GroundTruthObjects> objects;
@@ -136,8 +142,9 @@ RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   if (instances) res.objects.emplace(opts.min_object_points);
   if (opts.mode != "mrpt-distance") res.timing.emplace();
 
-  dynobj::mrpt::LidarObservationStream stream(seq.rawlog, dynobj::mrpt::ObservationConverter(),
-                                              {opts.sensor_label, 0, std::numeric_limits<std::size_t>::max()});
+  dynobj::mrpt::LidarObservationStream stream(
+      seq.rawlog, dynobj::mrpt::ObservationConverter(),
+      {opts.sensor_label, 0, std::numeric_limits<std::size_t>::max()});
   core::DynamicObjectDetector detector(opts.params);
   MrptDistanceFilter mrpt_filter;
   DriftModel drift(opts.drift);
@@ -148,17 +155,20 @@ RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   for (; k < opts.max_frames && stream.next(item); k++) {
     const core::LidarFrame& f = item.frame;
     if (k >= truth.sweeps.size() || truth.sweeps[k].timestamp_ns != f.timestamp_ns)
-      throw EvaluationError(seq.labels + ": no ground-truth sweep at t = " + std::to_string(f.timestamp_ns) +
+      throw EvaluationError(seq.labels +
+                            ": no ground-truth sweep at t = " + std::to_string(f.timestamp_ns) +
                             " ns (scan " + std::to_string(k) + ")");
     if (truth.rows != f.rows() || truth.cols != f.cols())
       throw EvaluationError(seq.labels + ": ground truth is " + std::to_string(truth.rows) + "x" +
-                            std::to_string(truth.cols) + " but the scans are " + std::to_string(f.rows()) +
-                            "x" + std::to_string(f.cols()));
+                            std::to_string(truth.cols) + " but the scans are " +
+                            std::to_string(f.rows()) + "x" + std::to_string(f.cols()));
     const core::StampedPose* pose = nullptr;
     std::optional<Eigen::Isometry3d> motion;
     if (needs_poses) {
       pose = core::findPose(poses, f.timestamp_ns);
-      if (!pose) throw EvaluationError(seq.poses + ": no pose at t = " + std::to_string(f.timestamp_ns) + " ns");
+      if (!pose)
+        throw EvaluationError(seq.poses + ": no pose at t = " + std::to_string(f.timestamp_ns) +
+                              " ns");
       if (prev_pose) motion = prev_pose->pose.inverse() * pose->pose;
       if (motion && opts.mode == "drift") motion = drift.corrupt(*motion);
       prev_pose = pose;
@@ -185,9 +195,10 @@ RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
       res.objects->add(instances->sweeps[k], pred, objects->sweeps[k]);
     }
     if (opts.overlay_sweeps.count(static_cast<int>(k)))
-      res.overlays.emplace_back(static_cast<int>(k),
-                                overlayImage(f, *predicted, maskOfPixels(truth.sweeps[k].pixels, f.rows(), f.cols()),
-                                             tracked ? *tracked : std::vector<core::TrackedObject>{}));
+      res.overlays.emplace_back(
+          static_cast<int>(k),
+          overlayImage(f, *predicted, maskOfPixels(truth.sweeps[k].pixels, f.rows(), f.cols()),
+                       tracked ? *tracked : std::vector<core::TrackedObject>{}));
     res.rows = f.rows();
     res.cols = f.cols();
     res.rate_hz = f.sensor.frequency;

@@ -51,7 +51,8 @@ GroundTruthObjects GroundTruthObjects::read(const std::string& path) {
       g.sweeps.emplace_back();
       g.sweeps.back().timestamp_ns = stamp;
     }
-    if (g.sweeps.back().timestamp_ns != stamp) throw bad("timestamp differs from the sweep's first row");
+    if (g.sweeps.back().timestamp_ns != stamp)
+      throw bad("timestamp differs from the sweep's first row");
     if (moving) g.sweeps.back().moving[id] = f[3];
   }
   return g;
@@ -65,7 +66,8 @@ std::optional<double> ObjectTally::recall() const {
 ObjectRecall::ObjectRecall(int min_points, double min_flagged)
     : min_points_(min_points), min_flagged_(min_flagged) {}
 
-void ObjectRecall::add(const core::LabelSweep& instances, const std::vector<std::uint32_t>& predicted,
+void ObjectRecall::add(const core::LabelSweep& instances,
+                       const std::vector<std::uint32_t>& predicted,
                        const GroundTruthObjects::Sweep& objects) {
   if (instances.timestamp_ns != objects.timestamp_ns)
     throw EvaluationError("instances at t = " + std::to_string(instances.timestamp_ns) +
@@ -80,7 +82,8 @@ void ObjectRecall::add(const core::LabelSweep& instances, const std::vector<std:
   }
   for (const auto& [id, counts] : seen) {
     if (counts.first < min_points_) continue;
-    const bool hit = static_cast<double>(counts.second) >= min_flagged_ * static_cast<double>(counts.first);
+    const bool hit =
+        static_cast<double>(counts.second) >= min_flagged_ * static_cast<double>(counts.first);
     for (ObjectTally* t : {&total_, &by_class_[objects.moving.at(id)]}) {
       t->present++;
       t->detected += hit ? 1 : 0;

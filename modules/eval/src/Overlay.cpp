@@ -3,6 +3,7 @@
 
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/core/SphericalProjection.h>
+
 #include <opencv2/imgproc.hpp>
 
 namespace dynobj::eval {

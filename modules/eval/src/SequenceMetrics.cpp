@@ -11,9 +11,12 @@ namespace {
 std::size_t common(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
   std::size_t i = 0, j = 0, n = 0;
   while (i < a.size() && j < b.size()) {
-    if (a[i] < b[j]) i++;
-    else if (b[j] < a[i]) j++;
-    else n++, i++, j++;
+    if (a[i] < b[j])
+      i++;
+    else if (b[j] < a[i])
+      j++;
+    else
+      n++, i++, j++;
   }
   return n;
 }
@@ -28,26 +31,29 @@ double quantile(const std::vector<double>& v, double q) {
 
 }  // namespace
 
-SequenceMetrics SequenceMetrics::compute(const core::LabelFile& truth, const core::LabelFile& pred) {
+SequenceMetrics SequenceMetrics::compute(const core::LabelFile& truth,
+                                         const core::LabelFile& pred) {
   if (truth.rows != pred.rows || truth.cols != pred.cols)
-    throw EvaluationError("ground truth is " + std::to_string(truth.rows) + "x" + std::to_string(truth.cols) +
-                          " but the predictions are " + std::to_string(pred.rows) + "x" +
-                          std::to_string(pred.cols));
+    throw EvaluationError("ground truth is " + std::to_string(truth.rows) + "x" +
+                          std::to_string(truth.cols) + " but the predictions are " +
+                          std::to_string(pred.rows) + "x" + std::to_string(pred.cols));
   SequenceMetrics m;
   const std::size_t n = std::max(truth.sweeps.size(), pred.sweeps.size());
   for (std::size_t k = 0; k < n; k++) {
     if (k >= truth.sweeps.size())
-      throw EvaluationError("prediction sweep " + std::to_string(k) + " (t = " +
-                            std::to_string(pred.sweeps[k].timestamp_ns) + " ns) has no ground truth");
+      throw EvaluationError("prediction sweep " + std::to_string(k) +
+                            " (t = " + std::to_string(pred.sweeps[k].timestamp_ns) +
+                            " ns) has no ground truth");
     if (k >= pred.sweeps.size())
-      throw EvaluationError("ground-truth sweep " + std::to_string(k) + " (t = " +
-                            std::to_string(truth.sweeps[k].timestamp_ns) + " ns) has no prediction");
+      throw EvaluationError("ground-truth sweep " + std::to_string(k) +
+                            " (t = " + std::to_string(truth.sweeps[k].timestamp_ns) +
+                            " ns) has no prediction");
     const auto& t = truth.sweeps[k];
     const auto& p = pred.sweeps[k];
     if (t.timestamp_ns != p.timestamp_ns)
-      throw EvaluationError("sweep " + std::to_string(k) + ": ground truth at t = " +
-                            std::to_string(t.timestamp_ns) + " ns, prediction at " +
-                            std::to_string(p.timestamp_ns) + " ns");
+      throw EvaluationError("sweep " + std::to_string(k) +
+                            ": ground truth at t = " + std::to_string(t.timestamp_ns) +
+                            " ns, prediction at " + std::to_string(p.timestamp_ns) + " ns");
     m.add(t.timestamp_ns, t.pixels, p.pixels);
   }
   return m;
@@ -63,8 +69,10 @@ void SequenceMetrics::add(std::int64_t timestamp_ns, const std::vector<std::uint
   s.counts.tp = tp;
   s.counts.fp = static_cast<std::int64_t>(predicted.size()) - tp;
   s.counts.fn = static_cast<std::int64_t>(truth.size()) - tp;
-  if (valid_points >= 0) s.counts.tn = std::max<std::int64_t>(0, valid_points - tp - s.counts.fp - s.counts.fn);
-  else static_known = false;
+  if (valid_points >= 0)
+    s.counts.tn = std::max<std::int64_t>(0, valid_points - tp - s.counts.fp - s.counts.fn);
+  else
+    static_known = false;
   total += s.counts;
   sweeps.push_back(s);
 }
@@ -79,10 +87,18 @@ Distribution SequenceMetrics::distribution(Metric metric) const {
   for (const auto& s : sweeps) {
     std::optional<double> x;
     switch (metric) {
-      case Metric::Precision: x = s.counts.precision(); break;
-      case Metric::Recall: x = s.counts.recall(); break;
-      case Metric::IoU: x = s.counts.iou(); break;
-      case Metric::F1: x = s.counts.f1(); break;
+      case Metric::Precision:
+        x = s.counts.precision();
+        break;
+      case Metric::Recall:
+        x = s.counts.recall();
+        break;
+      case Metric::IoU:
+        x = s.counts.iou();
+        break;
+      case Metric::F1:
+        x = s.counts.f1();
+        break;
     }
     if (x) v.push_back(*x);
   }

@@ -19,7 +19,8 @@ std::string writeTemp(const std::string& text) {
   return p;
 }
 
-core::LabelSweep instances(std::int64_t t, std::vector<std::uint32_t> px, std::vector<std::int32_t> ids) {
+core::LabelSweep instances(std::int64_t t, std::vector<std::uint32_t> px,
+                           std::vector<std::int32_t> ids) {
   core::LabelSweep s;
   s.timestamp_ns = t;
   s.pixels = std::move(px);
@@ -39,7 +40,8 @@ TEST(ObjectRecall, HalfTheObjectsPointsFlaggedCountsAsDetected) {
   // Object 1: pixels 0-3, two flagged (50 %: detected). Object 2: pixels 10-12, one flagged
   // (33 %: missed). Object 3 (static): ignored. Object 1 again is the only one of a 1-pixel
   // sweep: below min_points, not counted.
-  recall.add(instances(5, {0, 1, 2, 3, 10, 11, 12, 20}, {1, 1, 1, 1, 2, 2, 2, 3}), {2, 3, 12, 20}, objects);
+  recall.add(instances(5, {0, 1, 2, 3, 10, 11, 12, 20}, {1, 1, 1, 1, 2, 2, 2, 3}), {2, 3, 12, 20},
+             objects);
   EXPECT_EQ(recall.total().present, 2);
   EXPECT_EQ(recall.total().detected, 1);
   EXPECT_DOUBLE_EQ(*recall.total().recall(), 0.5);
@@ -69,7 +71,8 @@ TEST(GroundTruthObjects, ReadsMovingObjectsAndNamesBadLines) {
     GroundTruthObjects::read(writeTemp(std::string(kHeader) + "0,100,0,pedestrian,1,2\n"));
     FAIL();
   } catch (const EvaluationError& e) {
-    EXPECT_NE(std::string(e.what()).find(":2: expected 12 fields, found 6"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(":2: expected 12 fields, found 6"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(GroundTruthObjects::read(writeTemp("id,x\n")), EvaluationError);
 }
@@ -92,7 +95,9 @@ TEST(Report, MarkdownTablePrintsUndefinedAsNa) {
   r.description = "nothing dynamic";
   r.metrics.add(1, {}, {}, 10);  // no dynamic point anywhere: precision, recall, IoU, F1 undefined
   const std::string t = markdownTable({r});
-  EXPECT_NE(t.find("| empty | nothing dynamic | n/a | n/a | n/a | n/a | n/a | 0.000 % | — |"), std::string::npos) << t;
+  EXPECT_NE(t.find("| empty | nothing dynamic | n/a | n/a | n/a | n/a | n/a | 0.000 % | — |"),
+            std::string::npos)
+      << t;
 }
 
 TEST(Report, AtomicWriteLeavesNoPartialAndFailsOnAMissingFolder) {
@@ -107,7 +112,8 @@ TEST(Report, AtomicWriteLeavesNoPartialAndFailsOnAMissingFolder) {
 }
 
 TEST(DriftModel, ParsesKeysAndRejectsUnknownOnes) {
-  const DriftParams p = DriftParams::parse("sigma_xy=0,sigma_yaw_deg=0,bias_scale=0.1,bias_yaw_deg=1");
+  const DriftParams p =
+      DriftParams::parse("sigma_xy=0,sigma_yaw_deg=0,bias_scale=0.1,bias_yaw_deg=1");
   DriftModel model(p);
   Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
   m.translation() = Eigen::Vector3d(1, 0, 0);

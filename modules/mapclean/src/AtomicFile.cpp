@@ -6,7 +6,9 @@
 
 namespace dynobj::mapclean {
 
-std::string partialName(const std::string& path) { return path + ".partial"; }
+std::string partialName(const std::string& path) {
+  return path + ".partial";
+}
 
 void commitPartial(const std::string& path) {
   const std::string partial = partialName(path);

@@ -2,7 +2,6 @@
 #include "dynobj/mapclean/GroundLeveler.h"
 
 #include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <vector>
 
@@ -46,7 +45,8 @@ std::optional<GroundPlane> GroundLeveler::fit(const core::LidarFrame& frame) {
   for (const auto& p : pts)
     if (std::abs(g->normal.dot(p) + g->distance) < 0.05) in.push_back(p);
   g = planeOf(in);
-  if (!g || g->inliers < min_points_ || g->normal.z() < 0.9) return std::nullopt;  // > 25 deg: not a floor
+  if (!g || g->inliers < min_points_ || g->normal.z() < 0.9)
+    return std::nullopt;  // > 25 deg: not a floor
   return g;
 }
 
@@ -59,7 +59,8 @@ Eigen::Isometry3d GroundLeveler::level(const Eigen::Isometry3d& pose, const Grou
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;
   if (!floor_z_) floor_z_ = pose.translation().z() - plane.distance;
-  out.translation() = Eigen::Vector3d(pose.translation().x(), pose.translation().y(), *floor_z_ + plane.distance);
+  out.translation() =
+      Eigen::Vector3d(pose.translation().x(), pose.translation().y(), *floor_z_ + plane.distance);
   return out;
 }
 

@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 
 KthExporter::KthExporter(std::string dir, bool with_ground_truth)
     : dir_(std::move(dir)), partial_(partialName(dir_)) {
-  if (fs::exists(dir_)) throw std::runtime_error("export folder '" + dir_ + "' exists: remove it or choose another");
+  if (fs::exists(dir_))
+    throw std::runtime_error("export folder '" + dir_ + "' exists: remove it or choose another");
   std::error_code ec;
   fs::remove_all(partial_, ec);
   fs::create_directories(fs::path(partial_) / "pcd", ec);
@@ -49,7 +50,8 @@ void KthExporter::close() {
   gt_.reset();
   std::error_code ec;
   fs::rename(partial_, dir_, ec);
-  if (ec) throw std::runtime_error("cannot rename '" + partial_ + "' to '" + dir_ + "': " + ec.message());
+  if (ec)
+    throw std::runtime_error("cannot rename '" + partial_ + "' to '" + dir_ + "': " + ec.message());
   closed_ = true;
 }
 

@@ -11,9 +11,9 @@
 #include <stdexcept>
 
 #include "dynobj/mapclean/AtomicFile.h"
-#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
+#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/MrptOutputs.h"
 #include "dynobj/mapclean/PointCloudIO.h"
 #include "dynobj/mapclean/TopDownImage.h"
@@ -23,27 +23,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool isPcd(const std::string& f) { return fs::path(f).extension() == ".pcd"; }
+bool isPcd(const std::string& f) {
+  return fs::path(f).extension() == ".pcd";
+}
 
 /// Ground-truth labels of one scan (label file v1), matched by timestamp.
 class GroundTruthLabels {
  public:
-  explicit GroundTruthLabels(const std::string& file) : file_(file), labels_(core::LabelFile::read(file)) {
-    for (std::size_t i = 0; i < labels_.sweeps.size(); i++) by_time_[labels_.sweeps[i].timestamp_ns] = i;
+  explicit GroundTruthLabels(const std::string& file)
+      : file_(file), labels_(core::LabelFile::read(file)) {
+    for (std::size_t i = 0; i < labels_.sweeps.size(); i++)
+      by_time_[labels_.sweeps[i].timestamp_ns] = i;
   }
   /// Throws naming the file when the scan has no sweep or another size.
   cv::Mat_<std::uint8_t> mask(const Scan& s) const {
     const auto it = by_time_.find(s.frame.timestamp_ns);
     if (it == by_time_.end())
       throw std::runtime_error("ground truth '" + file_ + "' has no sweep at " +
-                               std::to_string(s.frame.timestamp_ns) + " ns (scan " + std::to_string(s.index) +
-                               "): the timestamps do not match");
+                               std::to_string(s.frame.timestamp_ns) + " ns (scan " +
+                               std::to_string(s.index) + "): the timestamps do not match");
     if (labels_.rows != s.frame.rows() || labels_.cols != s.frame.cols())
-      throw std::runtime_error("ground truth '" + file_ + "' is " + std::to_string(labels_.rows) + "x" +
-                               std::to_string(labels_.cols) + " but the scans are " +
-                               std::to_string(s.frame.rows()) + "x" + std::to_string(s.frame.cols()));
+      throw std::runtime_error("ground truth '" + file_ + "' is " + std::to_string(labels_.rows) +
+                               "x" + std::to_string(labels_.cols) + " but the scans are " +
+                               std::to_string(s.frame.rows()) + "x" +
+                               std::to_string(s.frame.cols()));
     cv::Mat_<std::uint8_t> m(s.frame.rows(), s.frame.cols(), std::uint8_t{0});
-    for (auto px : labels_.sweeps[it->second].pixels) m(static_cast<int>(px) / m.cols, static_cast<int>(px) % m.cols) = 255;
+    for (auto px : labels_.sweeps[it->second].pixels)
+      m(static_cast<int>(px) / m.cols, static_cast<int>(px) % m.cols) = 255;
     return m;
   }
 
@@ -56,13 +62,15 @@ class GroundTruthLabels {
 void writeTum(const std::string& path, const std::vector<FrameRecord>& recs) {
   AtomicFile f(path);
   auto& o = f.stream();
-  o << "# timestamp tx ty tz qx qy qz qw  (sensor pose in the world, as mapped by dynobj-mapclean)\n";
+  o << "# timestamp tx ty tz qx qy qz qw  (sensor pose in the world, as mapped by "
+       "dynobj-mapclean)\n";
   for (const FrameRecord& r : recs) {
     const Eigen::Quaterniond q(r.sensor_pose.linear());
     const Eigen::Vector3d& t = r.sensor_pose.translation();
-    o << r.timestamp_ns / 1000000000 << "." << std::setw(9) << std::setfill('0') << r.timestamp_ns % 1000000000
-      << std::setfill(' ') << std::fixed << std::setprecision(6) << " " << t.x() << " " << t.y() << " "
-      << t.z() << " " << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+    o << r.timestamp_ns / 1000000000 << "." << std::setw(9) << std::setfill('0')
+      << r.timestamp_ns % 1000000000 << std::setfill(' ') << std::fixed << std::setprecision(6)
+      << " " << t.x() << " " << t.y() << " " << t.z() << " " << q.x() << " " << q.y() << " "
+      << q.z() << " " << q.w() << "\n";
   }
   f.commit();
 }
@@ -92,7 +100,8 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   if (o.out_dir.empty()) throw std::runtime_error("no output folder");
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
-  if (!fs::is_directory(o.out_dir)) throw std::runtime_error("cannot create output directory '" + o.out_dir + "'");
+  if (!fs::is_directory(o.out_dir))
+    throw std::runtime_error("cannot create output directory '" + o.out_dir + "'");
   const std::string out = o.out_dir + "/";
 
   MapCleanSummary sum;
@@ -101,9 +110,11 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   core::DynamicObjectDetector detector(o.detector);
   std::unique_ptr<CleanedSimplemapWriter> simplemap;
   if (o.write_simplemap)
-    simplemap = std::make_unique<CleanedSimplemapWriter>(out + "cleaned.simplemap", o.keyframe_distance, o.keyframe_angle);
+    simplemap = std::make_unique<CleanedSimplemapWriter>(out + "cleaned.simplemap",
+                                                         o.keyframe_distance, o.keyframe_angle);
   std::unique_ptr<KthExporter> exporter;
-  if (!o.export_kth.empty()) exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr);
+  if (!o.export_kth.empty())
+    exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr);
 
   const bool two_pass = o.clean.second_pass;
   const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
@@ -193,12 +204,14 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
       source->rewind();
       for (std::size_t k = 0; k < records.size() && source->next(scan); k++) {
         const cv::Mat_<std::uint8_t> gt = gt_labels->mask(scan);
-        forEachWorldPoint(scan.frame, records[k].sensor_pose, o.clean.min_range,
-                          [&](int r, int c, const MapPoint& p) { eval.add(p.x, p.y, p.z, gt(r, c) != 0); });
+        forEachWorldPoint(
+            scan.frame, records[k].sensor_pose, o.clean.min_range,
+            [&](int r, int c, const MapPoint& p) { eval.add(p.x, p.y, p.z, gt(r, c) != 0); });
         report("evaluate", k + 1, records.size());
       }
     } else {
-      for (const MapPoint& p : readPcd(o.ground_truth).points) eval.add(p.x, p.y, p.z, p.intensity != 0.f);
+      for (const MapPoint& p : readPcd(o.ground_truth).points)
+        eval.add(p.x, p.y, p.z, p.intensity != 0.f);
     }
     sum.scores = eval.scores();
   }

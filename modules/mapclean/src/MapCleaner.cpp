@@ -58,7 +58,8 @@ const MapCleanParams& validated(const MapCleanParams& p) {
 MapCleaner::MapCleaner(const MapCleanParams& p)
     : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size) {}
 
-FrameRecord MapCleaner::record(const core::DetectionResult& r, const Eigen::Isometry3d& sensor_pose) {
+FrameRecord MapCleaner::record(const core::DetectionResult& r,
+                               const Eigen::Isometry3d& sensor_pose) {
   FrameRecord rec;
   rec.timestamp_ns = r.timestamp_ns;
   rec.sensor_pose = sensor_pose;
@@ -70,8 +71,8 @@ FrameRecord MapCleaner::record(const core::DetectionResult& r, const Eigen::Isom
   return rec;
 }
 
-cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame, const FrameRecord& rec,
-                                               bool second_pass) const {
+cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
+                                               const FrameRecord& rec, bool second_pass) const {
   cv::Mat_<std::uint8_t> mask(frame.rows(), frame.cols(), std::uint8_t{0});
   auto* m = mask.ptr<std::uint8_t>(0);
   for (auto px : rec.dynamic_pixels) {
@@ -107,7 +108,8 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame, co
 std::size_t MapCleaner::finish() {
   if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
   return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static) {
-    return static_cast<double>(n_static) * p_.dynamic_vote > static_cast<double>(dynamic_.countAt(key));
+    return static_cast<double>(n_static) * p_.dynamic_vote >
+           static_cast<double>(dynamic_.countAt(key));
   });
 }
 
@@ -118,7 +120,8 @@ std::size_t MapCleaner::moveToDynamic(const std::vector<std::uint64_t>& keys) {
   });
 }
 
-void MapCleaner::accumulate(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
+void MapCleaner::accumulate(const core::LidarFrame& frame,
+                            const cv::Mat_<std::uint8_t>& dynamic_mask,
                             const Eigen::Isometry3d& sensor_pose) {
   forEachWorldPoint(frame, sensor_pose, p_.min_range, [&](int r, int c, const MapPoint& p) {
     (dynamic_mask(r, c) ? dynamic_ : static_).insert(p);

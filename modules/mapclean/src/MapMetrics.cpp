@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/MapMetrics.h"
 
-#include <nanoflann.hpp>
-
 #include <cmath>
+#include <nanoflann.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +21,8 @@ struct Adaptor {
   }
 };
 
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3>;
+using Tree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3>;
 
 std::optional<double> ratio(std::size_t num, std::size_t den) {
   if (den == 0) return std::nullopt;
@@ -40,8 +40,12 @@ struct MapEvaluator::Index {
   }
 };
 
-std::optional<double> MapScores::sa() const { return ratio(static_kept, gt_static); }
-std::optional<double> MapScores::da() const { return ratio(dynamic_removed, gt_dynamic); }
+std::optional<double> MapScores::sa() const {
+  return ratio(static_kept, gt_static);
+}
+std::optional<double> MapScores::da() const {
+  return ratio(dynamic_removed, gt_dynamic);
+}
 std::optional<double> MapScores::aa() const {
   const auto a = sa(), d = da();
   if (!a || !d) return std::nullopt;
@@ -50,7 +54,8 @@ std::optional<double> MapScores::aa() const {
 
 MapEvaluator::MapEvaluator(std::vector<MapPoint> static_map, double tolerance)
     : map_(std::move(static_map)), tol2_(tolerance * tolerance), hits_(map_.size(), 0) {
-  if (!(tolerance > 0)) throw std::invalid_argument("tolerance must be > 0, got " + std::to_string(tolerance));
+  if (!(tolerance > 0))
+    throw std::invalid_argument("tolerance must be > 0, got " + std::to_string(tolerance));
   if (!map_.empty()) index_ = std::make_unique<Index>(map_);
   s_.map_points = map_.size();
 }

@@ -30,7 +30,8 @@ void nearestInWindow(const core::LidarFrame& f, int w, cv::Mat_<float>& out) {
   for (int r = 0; r < rows; r++)
     for (int c = 0; c < cols; c++) {
       float m = kNone;
-      for (int rr = std::max(0, r - w); rr <= std::min(rows - 1, r + w); rr++) m = std::min(m, row_min(rr, c));
+      for (int rr = std::max(0, r - w); rr <= std::min(rows - 1, r + w); rr++)
+        m = std::min(m, row_min(rr, c));
       out(r, c) = m;
     }
 }
@@ -46,7 +47,8 @@ MapVisibilityCheck::MapVisibilityCheck(const FreeSpaceParams& p, std::vector<Vox
 
 MapVisibilityCheck::~MapVisibilityCheck() = default;
 
-void MapVisibilityCheck::addScan(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose) {
+void MapVisibilityCheck::addScan(const core::LidarFrame& frame,
+                                 const Eigen::Isometry3d& sensor_pose) {
   const core::SensorModel& s = frame.sensor;
   if (!projection_ || projection_->sensor().rows != s.rows || projection_->sensor().cols != s.cols)
     projection_ = std::make_unique<core::SphericalProjection>(s);
@@ -64,8 +66,10 @@ void MapVisibilityCheck::addScan(const core::LidarFrame& frame, const Eigen::Iso
     int r = -1, c = -1;
     if (!projection_->pixelOf(q.x(), q.y(), q.z(), r, c) || !frame.isValid(r, c)) continue;
     const float tol = margin + margin_rel * range;
-    if (nearest_(r, c) > range + tol) bump(free_[i]);  // every beam around it ends beyond it
-    else if (std::abs(frame.range(r, c) - range) <= tol) bump(hit_[i]);
+    if (nearest_(r, c) > range + tol)
+      bump(free_[i]);  // every beam around it ends beyond it
+    else if (std::abs(frame.range(r, c) - range) <= tol)
+      bump(hit_[i]);
   }
 }
 

@@ -33,7 +33,8 @@ void CleanedSimplemapWriter::add(const Scan& scan, const cv::Mat_<std::uint8_t>&
   have_last_ = true;
   last_ = sensor_pose;
   auto obs = std::make_shared<::mrpt::obs::CObservation3DRangeScan>();
-  const auto* in = dynamic_cast<const ::mrpt::obs::CObservation3DRangeScan*>(scan.observation.get());
+  const auto* in =
+      dynamic_cast<const ::mrpt::obs::CObservation3DRangeScan*>(scan.observation.get());
   if (in) {
     *obs = *in;
   } else {  // other LiDAR types (and PCD input): the organized layout of the frame
@@ -69,7 +70,8 @@ void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& p
     const std::string file = base + ".pointsmap";
     {
       ::mrpt::io::CFileGZOutputStream out;
-      if (!out.open(partialName(file))) throw std::runtime_error("cannot write '" + partialName(file) + "'");
+      if (!out.open(partialName(file)))
+        throw std::runtime_error("cannot write '" + partialName(file) + "'");
       ::mrpt::serialization::archiveFrom(out) << map;
     }
     commitPartial(file);

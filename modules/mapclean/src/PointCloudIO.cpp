@@ -29,10 +29,14 @@ double readScalar(const char* p, const Field& f) {
   };
   if (f.type == 'F') return f.size == 8 ? get(double{}) : get(float{});
   if (f.type == 'U')
-    return f.size == 1 ? get(std::uint8_t{}) : f.size == 2 ? get(std::uint16_t{}) :
-           f.size == 4 ? get(std::uint32_t{}) : get(std::uint64_t{});
-  return f.size == 1 ? get(std::int8_t{}) : f.size == 2 ? get(std::int16_t{}) :
-         f.size == 4 ? get(std::int32_t{}) : get(std::int64_t{});
+    return f.size == 1   ? get(std::uint8_t{})
+           : f.size == 2 ? get(std::uint16_t{})
+           : f.size == 4 ? get(std::uint32_t{})
+                         : get(std::uint64_t{});
+  return f.size == 1   ? get(std::int8_t{})
+         : f.size == 2 ? get(std::int16_t{})
+         : f.size == 4 ? get(std::int32_t{})
+                       : get(std::int64_t{});
 }
 
 std::string viewpointLine(const Eigen::Isometry3d& vp) {
@@ -91,7 +95,8 @@ PcdCloud readPcd(const std::string& path) {
       if (!(ss >> t[0] >> t[1] >> t[2] >> q[0] >> q[1] >> q[2] >> q[3]))
         fail(path, where + "VIEWPOINT needs 'tx ty tz qw qx qy qz'");
       const Eigen::Quaterniond quat(q[0], q[1], q[2], q[3]);
-      if (std::abs(quat.norm() - 1.0) > 1e-3) fail(path, where + "VIEWPOINT quaternion is not unit length");
+      if (std::abs(quat.norm() - 1.0) > 1e-3)
+        fail(path, where + "VIEWPOINT quaternion is not unit length");
       cloud.viewpoint.linear() = quat.normalized().toRotationMatrix();
       cloud.viewpoint.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
     } else if (key == "DATA") {
@@ -101,7 +106,8 @@ PcdCloud readPcd(const std::string& path) {
     }
   }
   if (data.empty()) fail(path, "not a PCD file (no DATA line)");
-  if (data != "binary" && data != "ascii") fail(path, "unsupported DATA " + data + " (ascii or binary only)");
+  if (data != "binary" && data != "ascii")
+    fail(path, "unsupported DATA " + data + " (ascii or binary only)");
   if (sizes.size() != fields.size() || types.size() != fields.size())
     fail(path, "FIELDS, SIZE and TYPE have different lengths");
   std::map<std::string, std::size_t> index;
@@ -111,7 +117,8 @@ PcdCloud readPcd(const std::string& path) {
     f.size = sizes[i];
     f.type = types[i];
     f.count = i < counts.size() ? counts[i] : 1;
-    if (f.size != 1 && f.size != 2 && f.size != 4 && f.size != 8) fail(path, "bad SIZE of field " + f.name);
+    if (f.size != 1 && f.size != 2 && f.size != 4 && f.size != 8)
+      fail(path, "bad SIZE of field " + f.name);
     if (f.type != 'F' && f.type != 'U' && f.type != 'I') fail(path, "bad TYPE of field " + f.name);
     f.offset = record;
     record += f.size * f.count;
@@ -121,7 +128,11 @@ PcdCloud readPcd(const std::string& path) {
   for (const char* n : {"x", "y", "z"})
     if (!index.count(n)) fail(path, std::string("no field '") + n + "'");
   cloud.has_intensity = index.count("intensity") > 0;
-  const auto fi = [&](const char* n) { for (const Field& f : fields) if (f.name == n) return f; return Field{}; };
+  const auto fi = [&](const char* n) {
+    for (const Field& f : fields)
+      if (f.name == n) return f;
+    return Field{};
+  };
   const Field fx = fi("x"), fy = fi("y"), fz = fi("z"), fint = fi("intensity");
   cloud.points.resize(points);
   if (data == "binary") {
@@ -152,8 +163,9 @@ PcdCloud readPcd(const std::string& path) {
 void writePcd(const std::string& path, const std::vector<MapPoint>& points,
               const Eigen::Isometry3d& viewpoint, const std::string& comment) {
   AtomicFile f(path);
-  f.stream() << kFieldsHeader << (comment.empty() ? "" : "# " + comment + "\n") << "WIDTH " << points.size() << "\nHEIGHT 1\n" << viewpointLine(viewpoint)
-             << "\nPOINTS " << points.size() << "\nDATA binary\n";
+  f.stream() << kFieldsHeader << (comment.empty() ? "" : "# " + comment + "\n") << "WIDTH "
+             << points.size() << "\nHEIGHT 1\n"
+             << viewpointLine(viewpoint) << "\nPOINTS " << points.size() << "\nDATA binary\n";
   for (const MapPoint& p : points) writeRecord(f.stream(), p);
   f.commit();
 }

@@ -24,15 +24,17 @@ std::string seconds(std::int64_t ns) {
 }
 
 std::string scanName(const Scan& s) {
-  return "scan " + std::to_string(s.index) + " (" + s.where + ", t = " + seconds(s.frame.timestamp_ns) + ")";
+  return "scan " + std::to_string(s.index) + " (" + s.where +
+         ", t = " + seconds(s.frame.timestamp_ns) + ")";
 }
 
 class OdometryPoses : public PoseSource {
  public:
   Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
     if (!s.odometry)
-      throw std::runtime_error("no odometry (CObservationOdometry) before " + scanName(s) +
-                               ": choose another pose source (--poses ego, a TUM file or a simplemap)");
+      throw std::runtime_error(
+          "no odometry (CObservationOdometry) before " + scanName(s) +
+          ": choose another pose source (--poses ego, a TUM file or a simplemap)");
     return *s.odometry * s.mount;
   }
   std::string describe() const override { return "rawlog odometry"; }
@@ -85,10 +87,11 @@ class StampedPoses {
     if (t > poses_.back().timestamp_ns + tol_)
       throw std::runtime_error("'" + file_ + "' has " + std::to_string(poses_.size()) +
                                " poses, fewer than the scans: none for " + scanName(s) +
-                               " (its last pose is at " + seconds(poses_.back().timestamp_ns) + ")" + hint);
+                               " (its last pose is at " + seconds(poses_.back().timestamp_ns) +
+                               ")" + hint);
     const auto* near = core::findPose(poses_, t, INT64_MAX / 4);
-    throw std::runtime_error("'" + file_ + "': no pose within " + seconds(tol_) + " of " + scanName(s) +
-                             " (nearest at " + seconds(near->timestamp_ns) +
+    throw std::runtime_error("'" + file_ + "': no pose within " + seconds(tol_) + " of " +
+                             scanName(s) + " (nearest at " + seconds(near->timestamp_ns) +
                              "): the timestamps do not match" + hint);
   }
   const std::string& file() const { return file_; }
@@ -134,7 +137,8 @@ std::vector<core::StampedPose> simplemapKeyframes(const std::string& file) {
 class SimplemapPoses : public PoseSource {
  public:
   SimplemapPoses(const std::string& file, const PoseSourceOptions& o)
-      : keyframes_(file, simplemapKeyframes(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)) {}
+      : keyframes_(file, simplemapKeyframes(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)) {
+  }
   Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
     const std::int64_t t = s.frame.timestamp_ns;
     if (const auto* k = keyframes_.find(t)) {  // a keyframe: its robot pose, and its odometry
@@ -145,7 +149,8 @@ class SimplemapPoses : public PoseSource {
     const auto* prev = keyframes_.before(t);
     if (!prev || !last_kf_) keyframes_.missing(s);
     if (!s.odometry || !last_kf_odometry_)
-      keyframes_.missing(s, "; scans between keyframes need odometry in the rawlog, and there is none");
+      keyframes_.missing(
+          s, "; scans between keyframes need odometry in the rawlog, and there is none");
     return *last_kf_ * (last_kf_odometry_->inverse() * *s.odometry) * s.mount;
   }
   std::string describe() const override { return "simplemap '" + keyframes_.file() + "'"; }
@@ -156,7 +161,8 @@ class SimplemapPoses : public PoseSource {
 };
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -168,7 +174,8 @@ std::unique_ptr<PoseSource> makePoseSource(const std::string& spec, const PoseSo
   const bool tum = endsWith(spec, ".tum") || endsWith(spec, ".txt");
   const bool simplemap = endsWith(spec, ".simplemap") || endsWith(spec, ".simplemap.gz");
   if (!tum && !simplemap)
-    throw std::runtime_error("poses '" + spec + "': unknown format (expected odometry, ego, viewpoint, "
+    throw std::runtime_error("poses '" + spec +
+                             "': unknown format (expected odometry, ego, viewpoint, "
                              "a TUM file *.tum|*.txt or an MRPT *.simplemap[.gz])");
   if (!std::filesystem::is_regular_file(spec))
     throw std::runtime_error("poses file '" + spec + "' does not exist");

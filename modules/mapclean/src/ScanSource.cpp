@@ -51,8 +51,9 @@ class RawlogScans : public ScanSource {
         if (opts_.sensor_label.empty()) {  // one LiDAR per map: a second label is an error
           if (first_label_.empty()) first_label_ = obs->sensorLabel;
           if (obs->sensorLabel != first_label_)
-            throw std::runtime_error("'" + path_ + "' holds several LiDARs ('" + first_label_ + "', '" +
-                                     obs->sensorLabel + "'): choose one with --sensor-label");
+            throw std::runtime_error("'" + path_ + "' holds several LiDARs ('" + first_label_ +
+                                     "', '" + obs->sensorLabel +
+                                     "'): choose one with --sensor-label");
         }
         converter_.convert(*obs, s.frame);
         ::mrpt::poses::CPose3D mount;
@@ -87,7 +88,8 @@ class PcdFolderScans : public ScanSource {
  public:
   PcdFolderScans(const std::string& dir, const ScanSourceOptions& o) : dir_(dir) {
     if (!o.sensor)
-      throw std::runtime_error("'" + dir + "' is a PCD folder: give the sensor model (--sensor) to "
+      throw std::runtime_error("'" + dir +
+                               "' is a PCD folder: give the sensor model (--sensor) to "
                                "arrange its points into LiDAR frames");
     projection_ = std::make_unique<core::SphericalProjection>(*o.sensor);
     for (const auto& e : fs::directory_iterator(fs::path(dir) / "pcd"))
@@ -107,8 +109,10 @@ class PcdFolderScans : public ScanSource {
     cloud.reserve(pcd.points.size(), pcd.has_intensity, false);
     for (const MapPoint& p : pcd.points) {
       const Eigen::Vector3f q = to_sensor * Eigen::Vector3f(p.x, p.y, p.z);
-      if (pcd.has_intensity) cloud.push_back(q.x(), q.y(), q.z(), p.intensity);
-      else cloud.push_back(q.x(), q.y(), q.z());
+      if (pcd.has_intensity)
+        cloud.push_back(q.x(), q.y(), q.z(), p.intensity);
+      else
+        cloud.push_back(q.x(), q.y(), q.z());
     }
     projection_->project(cloud, s.frame);
     s.frame.timestamp_ns = timestampOf(pcd);
@@ -126,7 +130,8 @@ class PcdFolderScans : public ScanSource {
   std::int64_t timestampOf(const PcdCloud& pcd) const {
     for (const std::string& c : pcd.comments)
       if (c.rfind("timestamp_ns ", 0) == 0) return std::stoll(c.substr(13));
-    return static_cast<std::int64_t>(1e9 * static_cast<double>(pos_) / projection_->sensor().frequency);
+    return static_cast<std::int64_t>(1e9 * static_cast<double>(pos_) /
+                                     projection_->sensor().frequency);
   }
 
   std::string dir_;
@@ -137,17 +142,20 @@ class PcdFolderScans : public ScanSource {
 
 }  // namespace
 
-std::unique_ptr<ScanSource> openScanSource(const std::string& input, const ScanSourceOptions& opts) {
+std::unique_ptr<ScanSource> openScanSource(const std::string& input,
+                                           const ScanSourceOptions& opts) {
   if (!fs::exists(input)) throw std::runtime_error("input '" + input + "' does not exist");
   if (fs::is_directory(input)) {
     if (!fs::is_directory(fs::path(input) / "pcd"))
-      throw std::runtime_error("input '" + input + "': unknown format (a directory, but not a KTH "
+      throw std::runtime_error("input '" + input +
+                               "': unknown format (a directory, but not a KTH "
                                "DynamicMap folder with pcd/NNNNNN.pcd)");
     return std::make_unique<PcdFolderScans>(input, opts);
   }
   const std::string ext = fs::path(input).extension().string();
   if (ext != ".rawlog" && ext != ".gz")
-    throw std::runtime_error("input '" + input + "': unknown format (expected a .rawlog file or a "
+    throw std::runtime_error("input '" + input +
+                             "': unknown format (expected a .rawlog file or a "
                              "KTH DynamicMap folder with pcd/NNNNNN.pcd)");
   return std::make_unique<RawlogScans>(input, opts);
 }

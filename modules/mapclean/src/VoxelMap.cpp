@@ -49,7 +49,9 @@ std::uint32_t VoxelMap::countAt(std::uint64_t key) const {
   return it == cells_.end() ? 0 : it->second.n;
 }
 
-std::size_t VoxelMap::size() const { return voxel_ == 0.0 ? raw_.size() : cells_.size(); }
+std::size_t VoxelMap::size() const {
+  return voxel_ == 0.0 ? raw_.size() : cells_.size();
+}
 
 std::vector<MapPoint> VoxelMap::points() const {
   if (voxel_ == 0.0) return raw_;
@@ -73,9 +75,11 @@ std::vector<VoxelCentre> VoxelMap::voxels() const {
   out.reserve(cells_.size());
   for (const auto& [key, c] : cells_) {
     const double n = c.n;
-    out.push_back({key, static_cast<float>(c.sx / n), static_cast<float>(c.sy / n), static_cast<float>(c.sz / n)});
+    out.push_back({key, static_cast<float>(c.sx / n), static_cast<float>(c.sy / n),
+                   static_cast<float>(c.sz / n)});
   }
-  std::sort(out.begin(), out.end(), [](const VoxelCentre& a, const VoxelCentre& b) { return a.key < b.key; });
+  std::sort(out.begin(), out.end(),
+            [](const VoxelCentre& a, const VoxelCentre& b) { return a.key < b.key; });
   return out;
 }
 

@@ -40,7 +40,8 @@ inline core::LidarFrame tinyFrame(const std::vector<std::pair<std::pair<int, int
   f.timestamp_ns = t_ns;
   int i = 0;
   for (const auto& [rc, p] : pts) {
-    f.setPixel(rc.first, rc.second, static_cast<float>(cv::norm(p)), 10.f * static_cast<float>(i), p, i);
+    f.setPixel(rc.first, rc.second, static_cast<float>(cv::norm(p)), 10.f * static_cast<float>(i),
+               p, i);
     i++;
   }
   return f;

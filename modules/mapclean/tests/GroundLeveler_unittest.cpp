@@ -15,7 +15,8 @@ constexpr double kDeg = M_PI / 180.0;
 Eigen::Isometry3d pose(double x, double y, double z, double yaw, double pitch, double roll) {
   Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
   p.translation() = Eigen::Vector3d(x, y, z);
-  p.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+  p.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
                 Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
                    .toRotationMatrix();
   return p;
@@ -33,13 +34,15 @@ LidarFrame floorScan(const Eigen::Isometry3d& truth) {
   for (int r = 0; r < s.rows; r++)
     for (int c = 0; c < s.cols; c++) {
       const double az = -M_PI + (c + 0.5) * 2 * M_PI / s.cols;
-      const Eigen::Vector3d d(std::cos(el[r]) * std::cos(az), std::cos(el[r]) * std::sin(az), std::sin(el[r]));
+      const Eigen::Vector3d d(std::cos(el[r]) * std::cos(az), std::cos(el[r]) * std::sin(az),
+                              std::sin(el[r]));
       const double dz = (truth.linear() * d).z();
       if (dz > -1e-3) continue;
       const double t = -truth.translation().z() / dz;
       if (t > 40) continue;
       const Eigen::Vector3d p = t * d;
-      f.setPixel(r, c, static_cast<float>(t), 100.f, cv::Vec3f(p.x(), p.y(), p.z()), r * s.cols + c);
+      f.setPixel(r, c, static_cast<float>(t), 100.f, cv::Vec3f(p.x(), p.y(), p.z()),
+                 r * s.cols + c);
     }
   return f;
 }

@@ -19,10 +19,12 @@ TEST(KthExport, ExportThenImportRoundTrips) {
     const double el = (15.0 - 10.0 * row) * M_PI / 180.0;
     const double az = -M_PI + (col + 0.5) * 2 * M_PI / 8;
     return cv::Vec3f(static_cast<float>(range * std::cos(el) * std::cos(az)),
-                     static_cast<float>(range * std::cos(el) * std::sin(az)), static_cast<float>(range * std::sin(el)));
+                     static_cast<float>(range * std::cos(el) * std::sin(az)),
+                     static_cast<float>(range * std::sin(el)));
   };
   std::vector<dynobj::core::LidarFrame> frames = {
-      mc::test::tinyFrame({{{0, 1}, ray(0, 1, 4)}, {{2, 5}, ray(2, 5, 7)}, {{3, 7}, ray(3, 7, 2)}}, 1000),
+      mc::test::tinyFrame({{{0, 1}, ray(0, 1, 4)}, {{2, 5}, ray(2, 5, 7)}, {{3, 7}, ray(3, 7, 2)}},
+                          1000),
       mc::test::tinyFrame({{{1, 0}, ray(1, 0, 3)}, {{1, 4}, ray(1, 4, 9)}}, 2000)};
   std::vector<Eigen::Isometry3d> poses(2, Eigen::Isometry3d::Identity());
   poses[1].translation() = Eigen::Vector3d(1, 2, 0.5);
@@ -62,5 +64,5 @@ TEST(KthExport, ExportThenImportRoundTrips) {
       }
   }
   EXPECT_FALSE(src->next(s));
-  EXPECT_THROW(mc::KthExporter(dir.string(), false), std::runtime_error);   // an existing one is not
+  EXPECT_THROW(mc::KthExporter(dir.string(), false), std::runtime_error);  // an existing one is not
 }

@@ -11,7 +11,8 @@ using dynobj::core::TrackedObject;
 
 namespace {
 
-DetectionResult result(std::int64_t t, std::vector<int> dynamic_pixels, std::vector<TrackedObject> objects) {
+DetectionResult result(std::int64_t t, std::vector<int> dynamic_pixels,
+                       std::vector<TrackedObject> objects) {
   DetectionResult r;
   r.timestamp_ns = t;
   r.dynamic = cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0});
@@ -42,16 +43,18 @@ TEST(MapCleaner, SecondPassMarksATracksFramesBeforeItWasConfirmed) {
   mc::MapCleaner cleaner(params(0.0));
   // Frame 0: track 7 seen at x = 5 (not yet dynamic); the detector flags nothing.
   // Frame 1: track 7 confirmed dynamic (pixel 9 flagged); track 8 never dynamic.
-  const auto rec0 = cleaner.record(
-      result(0, {}, {object(7, false, {4.8, -0.2, -0.5}, {5.2, 0.2, 1.0}), object(8, false, {9, 9, 0}, {10, 10, 1})}),
-      Eigen::Isometry3d::Identity());
-  const auto rec1 = cleaner.record(result(100, {9}, {object(7, true, {5.8, -0.2, -0.5}, {6.2, 0.2, 1.0})}),
+  const auto rec0 = cleaner.record(result(0, {},
+                                          {object(7, false, {4.8, -0.2, -0.5}, {5.2, 0.2, 1.0}),
+                                           object(8, false, {9, 9, 0}, {10, 10, 1})}),
                                    Eigen::Isometry3d::Identity());
+  const auto rec1 =
+      cleaner.record(result(100, {9}, {object(7, true, {5.8, -0.2, -0.5}, {6.2, 0.2, 1.0})}),
+                     Eigen::Isometry3d::Identity());
   EXPECT_EQ(cleaner.confirmedTracks(), (std::set<int>{7}));
-  const auto f0 = mc::test::tinyFrame({{{1, 2}, {5.0f, 0.1f, 0.5f}},      // in track 7's box
-                                       {{1, 3}, {5.25f, 0.f, 0.f}},       // within the 0.1 m margin
-                                       {{2, 3}, {5.0f, 0.f, -0.6f}},      // below the box: floor, kept
-                                       {{1, 4}, {9.5f, 9.5f, 0.5f}},      // track 8: never dynamic
+  const auto f0 = mc::test::tinyFrame({{{1, 2}, {5.0f, 0.1f, 0.5f}},  // in track 7's box
+                                       {{1, 3}, {5.25f, 0.f, 0.f}},   // within the 0.1 m margin
+                                       {{2, 3}, {5.0f, 0.f, -0.6f}},  // below the box: floor, kept
+                                       {{1, 4}, {9.5f, 9.5f, 0.5f}},  // track 8: never dynamic
                                        {{0, 0}, {1.f, 1.f, 1.f}}});
   const auto with = cleaner.dynamicMask(f0, rec0, true);
   EXPECT_EQ(with(1, 2), 255);
@@ -71,7 +74,8 @@ TEST(MapCleaner, AccumulatesIntoStaticAndDynamicMapsInTheWorld) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Vector3d(10, 0, 0);
   pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const auto f = mc::test::tinyFrame({{{1, 1}, {2.5f, 0.5f, 0.5f}}, {{1, 2}, {2.5f, 0.7f, 0.5f}},  // one voxel
+  const auto f = mc::test::tinyFrame({{{1, 1}, {2.5f, 0.5f, 0.5f}},
+                                      {{1, 2}, {2.5f, 0.7f, 0.5f}},  // one voxel
                                       {{2, 2}, {5.5f, 0.5f, 0.5f}}});
   cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
   mask(2, 2) = 255;
@@ -93,7 +97,8 @@ TEST(MapCleaner, MinRangeDropsNearPointsFromBothMaps) {
   p.min_range = 1.0;
   mc::MapCleaner cleaner(p);
   const auto f = mc::test::tinyFrame({{{1, 1}, {0.5f, 0.f, 0.f}}, {{1, 2}, {2.f, 0.f, 0.f}}});
-  cleaner.accumulate(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}), Eigen::Isometry3d::Identity());
+  cleaner.accumulate(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}),
+                     Eigen::Isometry3d::Identity());
   EXPECT_EQ(cleaner.staticMap().size(), 1u);
 }
 
@@ -110,8 +115,12 @@ TEST(MapCleaner, BadParametersNameTheKey) {
 TEST(MapCleaner, VoxelVoteMovesMostlyDynamicVoxels) {
   mc::MapCleaner cleaner(params(1.0));  // dynamic_vote = 1
   // Voxel A: 1 static + 2 dynamic points -> moves; voxel B: 2 static + 1 dynamic -> stays.
-  const auto f = mc::test::tinyFrame({{{0, 0}, {0.5f, 0.5f, 0.5f}}, {{0, 1}, {0.6f, 0.5f, 0.5f}}, {{0, 2}, {0.7f, 0.5f, 0.5f}},
-                                      {{1, 0}, {3.5f, 0.5f, 0.5f}}, {{1, 1}, {3.6f, 0.5f, 0.5f}}, {{1, 2}, {3.7f, 0.5f, 0.5f}}});
+  const auto f = mc::test::tinyFrame({{{0, 0}, {0.5f, 0.5f, 0.5f}},
+                                      {{0, 1}, {0.6f, 0.5f, 0.5f}},
+                                      {{0, 2}, {0.7f, 0.5f, 0.5f}},
+                                      {{1, 0}, {3.5f, 0.5f, 0.5f}},
+                                      {{1, 1}, {3.6f, 0.5f, 0.5f}},
+                                      {{1, 2}, {3.7f, 0.5f, 0.5f}}});
   cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
   mask(0, 1) = mask(0, 2) = mask(1, 2) = 255;
   cleaner.accumulate(f, mask, Eigen::Isometry3d::Identity());

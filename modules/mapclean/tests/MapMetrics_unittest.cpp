@@ -9,10 +9,10 @@ using dynobj::mapclean::MapEvaluator;
 TEST(MapMetrics, HandComputedCounts) {
   // Map: a wall point and a ghost (a person's point the cleaner missed).
   MapEvaluator e({{0, 0, 0, 0}, {1, 0, 0, 0}}, 0.1);
-  e.add(0, 0, 0.05f, false);  // static, 5 cm from the wall point: kept
-  e.add(5, 0, 0, false);      // static, nothing near: lost
-  e.add(1, 0, 0.02f, true);   // dynamic, the ghost is 2 cm away: not removed
-  e.add(3, 0, 0, true);       // dynamic, removed
+  e.add(0, 0, 0.05f, false);    // static, 5 cm from the wall point: kept
+  e.add(5, 0, 0, false);        // static, nothing near: lost
+  e.add(1, 0, 0.02f, true);     // dynamic, the ghost is 2 cm away: not removed
+  e.add(3, 0, 0, true);         // dynamic, removed
   e.add(0.0f, 0.09f, 0, true);  // dynamic next to the wall point: not removed, but no ghost
   const auto s = e.scores();
   EXPECT_EQ(s.gt_static, 2u);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/mapclean/MapVisibilityCheck.h>
 #include <dynobj/mapclean/MapCleaner.h>
+#include <dynobj/mapclean/MapVisibilityCheck.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,13 +14,16 @@ namespace {
 // The tiny sensor: rows at +15, +5, -5, -15 deg; 8 columns of 45 deg, column c centred on
 // azimuth -180 + 22.5 + 45 c deg.
 cv::Vec3f beam(int row, int col, float range) {
-  const double el = (15.0 - 10.0 * row) * M_PI / 180.0, az = (-180.0 + 22.5 + 45.0 * col) * M_PI / 180.0;
+  const double el = (15.0 - 10.0 * row) * M_PI / 180.0,
+               az = (-180.0 + 22.5 + 45.0 * col) * M_PI / 180.0;
   return cv::Vec3f(static_cast<float>(range * std::cos(el) * std::cos(az)),
-                   static_cast<float>(range * std::cos(el) * std::sin(az)), static_cast<float>(range * std::sin(el)));
+                   static_cast<float>(range * std::cos(el) * std::sin(az)),
+                   static_cast<float>(range * std::sin(el)));
 }
 
 /// Every pixel returns at `range`, except the overrides (range <= 0: no return).
-dynobj::core::LidarFrame frameAt(float range, std::vector<std::pair<std::pair<int, int>, float>> overrides = {}) {
+dynobj::core::LidarFrame frameAt(
+    float range, std::vector<std::pair<std::pair<int, int>, float>> overrides = {}) {
   std::vector<std::pair<std::pair<int, int>, cv::Vec3f>> pts;
   for (int r = 0; r < 4; r++)
     for (int c = 0; c < 8; c++) {
@@ -54,8 +57,8 @@ std::vector<mc::VoxelCentre> oneVoxel() {
 
 TEST(MapVisibilityCheck, AVoxelSeenThroughByLaterScansIsRemoved) {
   mc::MapVisibilityCheck check(params(), oneVoxel());
-  check.addScan(frameAt(5.f), kOrigin);   // a person stood there: a hit
-  check.addScan(frameAt(10.f), kOrigin);  // gone: every beam reaches the wall behind
+  check.addScan(frameAt(5.f), kOrigin);      // a person stood there: a hit
+  check.addScan(frameAt(10.f), kOrigin);     // gone: every beam reaches the wall behind
   EXPECT_TRUE(check.seenThrough().empty());  // one see-through view is not enough (min_views 2)
   check.addScan(frameAt(10.f), kOrigin);
   EXPECT_EQ(check.hitViews(0), 1);
@@ -97,7 +100,7 @@ TEST(MapVisibilityCheck, ReturnsWithinTheMarginAreHitsNotSeeThrough) {
 
 TEST(MapVisibilityCheck, OccludedOrMissingReturnsGiveNoEvidence) {
   mc::MapVisibilityCheck check(params(), oneVoxel());
-  check.addScan(frameAt(3.f), kOrigin);                 // something in front hides the voxel
+  check.addScan(frameAt(3.f), kOrigin);                    // something in front hides the voxel
   check.addScan(frameAt(10.f, {{{2, 4}, 0.f}}), kOrigin);  // no return in its pixel
   EXPECT_EQ(check.freeViews(0), 0);
   EXPECT_EQ(check.hitViews(0), 0);

@@ -14,7 +14,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) { return dynobj::mapclean::test::tmpPath(name); }
+std::string tmp(const std::string& name) {
+  return dynobj::mapclean::test::tmpPath(name);
+}
 
 Eigen::Isometry3d somePose() {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -23,7 +25,9 @@ Eigen::Isometry3d somePose() {
   return T;
 }
 
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 }  // namespace
 
@@ -48,8 +52,11 @@ TEST(PointCloudIO, BinaryPcdRoundTripKeepsPointsViewpointAndComment) {
 
 TEST(PointCloudIO, AsciiPcdWithOtherFieldsAndTypes) {
   const std::string f = tmp("ascii.pcd");
-  writeText(f, "VERSION .7\nFIELDS x y z rgb intensity\nSIZE 8 8 8 4 1\nTYPE F F F U U\nCOUNT 1 1 1 1 1\n"
-               "WIDTH 2\nHEIGHT 1\nVIEWPOINT 1 2 3 1 0 0 0\nPOINTS 2\nDATA ascii\n0.5 1 2 77 9\n3 4 5 0 200\n");
+  writeText(
+      f,
+      "VERSION .7\nFIELDS x y z rgb intensity\nSIZE 8 8 8 4 1\nTYPE F F F U U\nCOUNT 1 1 1 1 1\n"
+      "WIDTH 2\nHEIGHT 1\nVIEWPOINT 1 2 3 1 0 0 0\nPOINTS 2\nDATA ascii\n0.5 1 2 77 9\n3 4 5 0 "
+      "200\n");
   const auto c = mc::readPcd(f);
   ASSERT_EQ(c.points.size(), 2u);
   EXPECT_FLOAT_EQ(c.points[0].x, 0.5f);
@@ -76,12 +83,16 @@ TEST(PointCloudIO, StreamWriterPatchesTheCountAndMatchesWritePcd) {
   ASSERT_EQ(ca.points.size(), 1234u);
   EXPECT_EQ(ca.points[1233].x, 1233.f);
   EXPECT_EQ(ca.points[1233].intensity, 1.f);
-  EXPECT_EQ(fs::file_size(a) - fs::file_size(b), 2u * 12u - 2u * 4u);  // padded counts (12 chars vs "1234")
+  EXPECT_EQ(fs::file_size(a) - fs::file_size(b),
+            2u * 12u - 2u * 4u);  // padded counts (12 chars vs "1234")
 }
 
 TEST(PointCloudIO, UnclosedStreamWriterLeavesNothing) {
   const std::string a = tmp("abandoned.pcd");
-  { mc::PcdStreamWriter w(a); w.add({1, 2, 3, 0}); }
+  {
+    mc::PcdStreamWriter w(a);
+    w.add({1, 2, 3, 0});
+  }
   EXPECT_FALSE(fs::exists(a));
   EXPECT_FALSE(fs::exists(a + ".partial"));
 }
@@ -98,7 +109,8 @@ TEST(PointCloudIO, MalformedPcdErrorsNameTheFile) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
   };
-  const std::string head = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n";
+  const std::string head =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n";
   expectError(head + "DATA binary\n" + std::string(12, '\0'), "truncated");
   expectError(head + "DATA binary_compressed\n", "unsupported DATA");
   expectError("FIELDS x y\nSIZE 4 4\nTYPE F F\nPOINTS 0\nDATA ascii\n", "no field 'z'");

@@ -17,7 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) { return dynobj::mapclean::test::tmpPath(name); }
+std::string tmp(const std::string& name) {
+  return dynobj::mapclean::test::tmpPath(name);
+}
 
 Eigen::Isometry3d shift(double x, double y, double yaw = 0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -42,7 +44,8 @@ void expectError(Fn fn, std::initializer_list<const char*> fragments) {
     fn();
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
-    for (const char* f : fragments) EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
+    for (const char* f : fragments)
+      EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
   }
 }
 
@@ -50,16 +53,22 @@ void expectError(Fn fn, std::initializer_list<const char*> fragments) {
 
 TEST(PoseSource, TumFileMatchesByTimestampAndNamesMissingScans) {
   const std::string f = tmp("two.tum");
-  std::ofstream(f) << "# t x y z qx qy qz qw\n1.000000000 1 2 3 0 0 0 1\n1.100000000 4 5 6 0 0 0 1\n";
+  std::ofstream(f)
+      << "# t x y z qx qy qz qw\n1.000000000 1 2 3 0 0 0 1\n1.100000000 4 5 6 0 0 0 1\n";
   auto src = mc::makePoseSource(f);
   const dynobj::core::EgoMotion ego;
-  EXPECT_TRUE(src->pose(scanAt(0, 1000000000), ego).translation().isApprox(Eigen::Vector3d(1, 2, 3)));
-  EXPECT_TRUE(src->pose(scanAt(1, 1100000400), ego).translation().isApprox(Eigen::Vector3d(4, 5, 6)));
-  expectError([&] { src->pose(scanAt(2, 1200000000), ego); }, {"two.tum", "has 2 poses, fewer than the scans", "scan 2"});
-  expectError([&] { src->pose(scanAt(1, 1050000000), ego); }, {"two.tum", "timestamps do not match", "scan 1"});
+  EXPECT_TRUE(
+      src->pose(scanAt(0, 1000000000), ego).translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_TRUE(
+      src->pose(scanAt(1, 1100000400), ego).translation().isApprox(Eigen::Vector3d(4, 5, 6)));
+  expectError([&] { src->pose(scanAt(2, 1200000000), ego); },
+              {"two.tum", "has 2 poses, fewer than the scans", "scan 2"});
+  expectError([&] { src->pose(scanAt(1, 1050000000), ego); },
+              {"two.tum", "timestamps do not match", "scan 1"});
   mc::PoseSourceOptions robot;
   robot.tum_robot_poses = true;
-  EXPECT_NEAR(mc::makePoseSource(f, robot)->pose(scanAt(0, 1000000000), ego).translation().z(), 3.5, 1e-12);
+  EXPECT_NEAR(mc::makePoseSource(f, robot)->pose(scanAt(0, 1000000000), ego).translation().z(), 3.5,
+              1e-12);
 }
 
 TEST(PoseSource, MalformedTumLineIsAnErrorWithFileAndLine) {
@@ -109,7 +118,9 @@ TEST(PoseSource, SimplemapKeyframesAndOdometryBridging) {
     obs->timestamp = dynobj::mrpt::fromUnixNs(k * 1000000000LL);
     auto sf = std::make_shared<::mrpt::obs::CSensoryFrame>();
     sf->insert(obs);
-    sm.insert(std::make_shared<::mrpt::poses::CPose3DPDFGaussian>(::mrpt::poses::CPose3D(10.0 * k, 0, 0, 0, 0, 0)), sf);
+    sm.insert(std::make_shared<::mrpt::poses::CPose3DPDFGaussian>(
+                  ::mrpt::poses::CPose3D(10.0 * k, 0, 0, 0, 0, 0)),
+              sf);
   }
   const std::string f = tmp("kf.simplemap");
   ASSERT_TRUE(sm.saveToFile(f));

@@ -28,7 +28,8 @@ TEST(VoxelMap, OnePointPerVoxelAtTheCentroidWithMeanIntensity) {
 TEST(VoxelMap, SizeDependsOnSpaceNotOnRepetitions) {
   VoxelMap m(0.1);
   for (int scan = 0; scan < 100; scan++)
-    for (int i = 0; i < 10; i++) m.insert({0.05f + 0.1f * static_cast<float>(i), 0.05f, 0.05f, 1.f});
+    for (int i = 0; i < 10; i++)
+      m.insert({0.05f + 0.1f * static_cast<float>(i), 0.05f, 0.05f, 1.f});
   EXPECT_EQ(m.size(), 10u);
   EXPECT_EQ(m.pointsInserted(), 1000u);
 }

@@ -10,8 +10,9 @@ namespace dynobj::mrpt::detail {
 core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointCloud& o,
                                         const OptSensor& sensor, core::LidarFrame& frame) {
   if (!sensor)
-    fail(o, "needs a sensor model (rows, cols, vertical field of view) to be projected with "
-            "Eq. (1); pass one, e.g. share/dynobj/sensors/os0-64.ini");
+    fail(o,
+         "needs a sensor model (rows, cols, vertical field of view) to be projected with "
+         "Eq. (1); pass one, e.g. share/dynobj/sensors/os0-64.ini");
   if (!o.pointcloud) fail(o, "has no point cloud (pointcloud is null)");
   const auto& pc = *o.pointcloud;
   const auto& xs = pc.getPointsBufferRef_x();

@@ -129,8 +129,9 @@ core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const
 
   if (!o.hasRangeImage) fail(o, "has no points3D and no range image");
   if (!sensor)
-    fail(o, "has no points3D; its range image can only be turned into points with a sensor model "
-            "(its pinhole cameraParams cannot describe a 360-degree LiDAR)");
+    fail(o,
+         "has no points3D; its range image can only be turned into points with a sensor model "
+         "(its pinhole cameraParams cannot describe a 360-degree LiDAR)");
   if (o.range_is_depth)
     fail(o, "has range_is_depth = true (a depth camera); the LiDAR layout stores ranges");
   // Documented fallback: unproject each range with the sensor model (row elevation, column centre).

@@ -23,11 +23,12 @@ bool madeByFromVelodyne(const CObservationRotatingScan& o) {
 
 }  // namespace
 
-core::ProjectionStats convertRotatingScan(const CObservationRotatingScan& o, const OptSensor& sensor,
-                                          core::LidarFrame& frame) {
+core::ProjectionStats convertRotatingScan(const CObservationRotatingScan& o,
+                                          const OptSensor& sensor, core::LidarFrame& frame) {
   if (!sensor)
-    fail(o, "carries no beam elevations in MRPT 2.5; pass a sensor model whose beam table matches "
-            "its rows (e.g. share/dynobj/sensors/vlp-16.ini)");
+    fail(o,
+         "carries no beam elevations in MRPT 2.5; pass a sensor model whose beam table matches "
+         "its rows (e.g. share/dynobj/sensors/vlp-16.ini)");
   const int h = o.rowCount, w = o.columnCount;
   if (h == 0 || w == 0) fail(o, "is empty (rowCount or columnCount is 0)");
   if (sensor->rows != h)

@@ -24,8 +24,8 @@ int estimateColumns(const core::PointCloud& cloud, const std::vector<std::uint16
   const int fallback = lasers <= 16 ? 1800 : 2048;
   std::vector<std::size_t> count(static_cast<std::size_t>(lasers) + 1, 0);
   for (auto l : laser) count[std::min<std::size_t>(l, count.size() - 1)]++;
-  const auto best = static_cast<std::uint16_t>(
-      std::max_element(count.begin(), count.end() - 1) - count.begin());
+  const auto best =
+      static_cast<std::uint16_t>(std::max_element(count.begin(), count.end() - 1) - count.begin());
   if (count[best] < 64) return fallback;
   std::vector<double> az;
   az.reserve(count[best]);
@@ -72,7 +72,8 @@ core::ProjectionStats convertVelodyne(const CObservationVelodyneScan& o, const O
     model.model = "Velodyne (" + std::to_string(cal.size()) + " lasers, scan calibration)";
     model.rows = static_cast<int>(cal.size());
     model.beam_elevations.clear();
-    for (const auto& lc : cal) model.beam_elevations.push_back(lc.verticalCorrection * M_PI / 180.0);
+    for (const auto& lc : cal)
+      model.beam_elevations.push_back(lc.verticalCorrection * M_PI / 180.0);
   } else if (sensor) {
     model = *sensor;
   } else {

@@ -9,7 +9,6 @@
 #include "detail.h"
 #include "dynobj/mrpt/RangeScanTagging.h"
 
-
 namespace dynobj::mrpt {
 
 namespace mobs = ::mrpt::obs;
@@ -24,10 +23,14 @@ FilterMode parseFilterMode(const std::string& name) {
 
 const char* toString(FilterMode m) {
   switch (m) {
-    case FilterMode::Mark: return "mark";
-    case FilterMode::Drop: return "drop";
-    case FilterMode::Split: return "split";
-    case FilterMode::Restore: return "restore";
+    case FilterMode::Mark:
+      return "mark";
+    case FilterMode::Drop:
+      return "drop";
+    case FilterMode::Split:
+      return "split";
+    case FilterMode::Restore:
+      return "restore";
   }
   return "?";
 }
@@ -48,8 +51,8 @@ void DynamicObjectFilter::warn(const std::string& message) {
   summary_.passed_through++;
 }
 
-const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservation::Ptr& obs,
-                                                         std::vector<mobs::CObservation::Ptr>* extra) {
+const core::DetectionResult* DynamicObjectFilter::filter(
+    const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra) {
   summary_.observations++;
   if (!obs || !ObservationConverter::isLidarObservation(*obs)) return nullptr;
   if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) return nullptr;
@@ -98,9 +101,12 @@ const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservatio
   if (scan3d) {
     if (opts_.mode == FilterMode::Split)
       for (std::size_t i = 0; i < point_mask.size(); i++)
-        if (point_mask[i]) removed->insertPoint(scan3d->points3D_x[i], scan3d->points3D_y[i], scan3d->points3D_z[i]);
-    if (opts_.mode == FilterMode::Mark) markDynamic(*scan3d, r.dynamic);
-    else dropDynamic(*scan3d, r.dynamic);
+        if (point_mask[i])
+          removed->insertPoint(scan3d->points3D_x[i], scan3d->points3D_y[i], scan3d->points3D_z[i]);
+    if (opts_.mode == FilterMode::Mark)
+      markDynamic(*scan3d, r.dynamic);
+    else
+      dropDynamic(*scan3d, r.dynamic);
   } else if (auto* velo = dynamic_cast<mobs::CObservationVelodyneScan*>(obs.get())) {
     // Map insertion reads point_cloud when it is not empty: make it the kept points only.
     if (velo->point_cloud.size() == 0) velo->generatePointCloud();

@@ -10,7 +10,6 @@
 #include "detail.h"
 #include "dynobj/mrpt/TimeConversion.h"
 
-
 namespace dynobj::mrpt {
 
 namespace mobs = ::mrpt::obs;
@@ -26,7 +25,8 @@ core::ProjectionStats organizeOrFail(const mobs::CObservation& obs, const core::
                                      const core::PointCloud& cloud, core::LidarFrame& frame) {
   try {
     const core::SphericalProjection projection(model);
-    return cloud.isOrganized() ? projection.organize(cloud, frame) : projection.project(cloud, frame);
+    return cloud.isOrganized() ? projection.organize(cloud, frame)
+                               : projection.project(cloud, frame);
   } catch (const std::invalid_argument& e) {  // includes core::ParameterError
     fail(obs, e.what());
   }
@@ -67,9 +67,10 @@ core::ProjectionStats ObservationConverter::convert(const mobs::CObservation& ob
     st = detail::convertRotatingScan(dynamic_cast<const mobs::CObservationRotatingScan&>(obs),
                                      sensor_, frame);
   else
-    detail::fail(obs, "is not a LiDAR observation this converter supports "
-                      "(CObservation3DRangeScan, CObservationVelodyneScan, "
-                      "CObservationPointCloud, CObservationRotatingScan)");
+    detail::fail(obs,
+                 "is not a LiDAR observation this converter supports "
+                 "(CObservation3DRangeScan, CObservationVelodyneScan, "
+                 "CObservationPointCloud, CObservationRotatingScan)");
   frame.timestamp_ns = toUnixNs(obs.timestamp);
   if (st.input_points == 0) detail::fail(obs, "is empty (no points)");
   return st;

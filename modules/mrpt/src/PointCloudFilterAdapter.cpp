@@ -16,7 +16,8 @@ PointCloudFilterAdapter::PointCloudFilterAdapter(const core::SensorModel& sensor
 
 void PointCloudFilterAdapter::filter(::mrpt::maps::CPointsMap* cloud,
                                      const ::mrpt::system::TTimeStamp stamp,
-                                     const ::mrpt::poses::CPose3D& pose, TExtraFilterParams* params) {
+                                     const ::mrpt::poses::CPose3D& pose,
+                                     TExtraFilterParams* params) {
   if (!cloud) throw std::invalid_argument("PointCloudFilterAdapter::filter: null point cloud");
   core::PointCloud pc;
   const auto& xs = cloud->getPointsBufferRef_x();
@@ -32,7 +33,8 @@ void PointCloudFilterAdapter::filter(::mrpt::maps::CPointsMap* cloud,
   if (prev_pose_) {
     Eigen::Isometry3d T;
     // `a - b` in MRPT is a expressed in b's frame: the current pose seen from the previous one.
-    T.matrix() = (pose - *prev_pose_).getHomogeneousMatrixVal<::mrpt::math::CMatrixDouble44>().asEigen();
+    T.matrix() =
+        (pose - *prev_pose_).getHomogeneousMatrixVal<::mrpt::math::CMatrixDouble44>().asEigen();
     motion = T;
   }
   prev_pose_ = pose;

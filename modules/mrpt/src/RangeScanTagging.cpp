@@ -131,9 +131,14 @@ TagStats restoreDynamic(CObservation3DRangeScan& o) {
         int a = r - 1, b = r + 1;
         while (a >= 0 && std::isnan(row_el[static_cast<std::size_t>(a)])) a--;
         while (b < H && std::isnan(row_el[static_cast<std::size_t>(b)])) b++;
-        if (a < 0 && b >= H) fail(o, "cannot restore: no remaining point tells the beam elevations");
-        e = a < 0 ? row_el[static_cast<std::size_t>(b)] : (b >= H ? row_el[static_cast<std::size_t>(a)]
-            : row_el[static_cast<std::size_t>(a)] + (row_el[static_cast<std::size_t>(b)] - row_el[static_cast<std::size_t>(a)]) * (r - a) / (b - a));
+        if (a < 0 && b >= H)
+          fail(o, "cannot restore: no remaining point tells the beam elevations");
+        e = a < 0 ? row_el[static_cast<std::size_t>(b)]
+                  : (b >= H ? row_el[static_cast<std::size_t>(a)]
+                            : row_el[static_cast<std::size_t>(a)] +
+                                  (row_el[static_cast<std::size_t>(b)] -
+                                   row_el[static_cast<std::size_t>(a)]) *
+                                      (r - a) / (b - a));
       }
       const double az = -M_PI + (c + 0.5) * 2 * M_PI / W;  // Eq. (1) column centre
       const double d = raw * static_cast<double>(o.rangeUnits);

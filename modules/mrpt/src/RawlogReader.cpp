@@ -74,9 +74,9 @@ bool RawlogReader::next(RawlogEntry& entry) {
     if (!sf)
       throw RawlogError("rawlog '" + path_ + "' entry " + std::to_string(entries_) +
                         ": an action collection is not followed by a sensory frame" +
-                        (sf_obj ? std::string(" (found ") + sf_obj->GetRuntimeClass()->className +
-                                      ")"
-                                : std::string(" (end of file)")));
+                        (sf_obj
+                             ? std::string(" (found ") + sf_obj->GetRuntimeClass()->className + ")"
+                             : std::string(" (end of file)")));
     entry.actions = acts;
     entry.sensory_frame = sf;
   } else if (auto sf = std::dynamic_pointer_cast<mobs::CSensoryFrame>(obj)) {

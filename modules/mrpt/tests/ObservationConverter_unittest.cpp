@@ -105,8 +105,8 @@ TEST(ObservationConverter, RangeScan3DMalformed) {
   {
     auto o = tinyRangeScan();
     o.hasIntensityImage = true;
-    o.intensityImage = ::mrpt::img::CImage(cv::Mat_<std::uint8_t>(3, 8, std::uint8_t{1}),
-                                           ::mrpt::img::DEEP_COPY);
+    o.intensityImage =
+        ::mrpt::img::CImage(cv::Mat_<std::uint8_t>(3, 8, std::uint8_t{1}), ::mrpt::img::DEEP_COPY);
     expectError(conv, o, "intensityImage is 3x8");
   }
   {
@@ -235,8 +235,8 @@ TEST(ObservationConverter, VelodynePointCloudRowsFollowCalibration) {
     pc.intensity.push_back(inten);
     pc.laser_id.push_back(static_cast<std::int16_t>(laser));
   };
-  add(0.1, 0, 10, 50);   // lowest beam -> row 3
-  add(90.1, 3, 4, 60);   // highest beam -> row 0
+  add(0.1, 0, 10, 50);           // lowest beam -> row 3
+  add(90.1, 3, 4, 60);           // highest beam -> row 0
   SensorModel s = tinySensor();  // 8 columns instead of the default 1800
   LidarFrame f;
   ObservationConverter(s).convert(o, f);

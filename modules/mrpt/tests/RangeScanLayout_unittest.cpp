@@ -4,13 +4,13 @@
 #include <dynobj/mrpt/ObservationConverter.h>
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <gtest/gtest.h>
-
-#include "SerializationRoundTrip.h"
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <random>
+
+#include "SerializationRoundTrip.h"
 
 using namespace dynobj;
 namespace mobs = ::mrpt::obs;
@@ -23,19 +23,20 @@ core::LidarFrame randomFrame(unsigned seed, int rows, int cols) {
   s.cols = cols;
   s.max_range = 120;  // needs 2 mm range units
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> az(-M_PI, M_PI), el(-0.7, 0.7), r(0.5, 110), inten(0, 3000);
+  std::uniform_real_distribution<double> az(-M_PI, M_PI), el(-0.7, 0.7), r(0.5, 110),
+      inten(0, 3000);
   core::PointCloud cloud;
   for (int i = 0; i < rows * cols / 2; i++) {
     const double a = az(rng), e = el(rng), d = r(rng);
     cloud.push_back(static_cast<float>(d * std::cos(e) * std::cos(a)),
                     static_cast<float>(d * std::cos(e) * std::sin(a)),
-                    static_cast<float>(d * std::sin(e)), static_cast<float>(std::round(inten(rng))));
+                    static_cast<float>(d * std::sin(e)),
+                    static_cast<float>(std::round(inten(rng))));
   }
   core::LidarFrame f;
   core::SphericalProjection(s).project(cloud, f);
   return f;
 }
-
 
 }  // namespace
 

@@ -5,16 +5,16 @@
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <dynobj/mrpt/RangeScanTagging.h>
 #include <gtest/gtest.h>
-
-#include "SerializationRoundTrip.h"
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/io/lazy_load_path.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/TPixelLabelInfo.h>
 #include <mrpt/serialization/CArchive.h>
-#include <mrpt/io/lazy_load_path.h>
 #include <mrpt/system/filesystem.h>
 
 #include <cmath>
+
+#include "SerializationRoundTrip.h"
 
 using namespace dynobj;
 namespace dm = dynobj::mrpt;
@@ -22,7 +22,8 @@ namespace mobs = ::mrpt::obs;
 
 namespace {
 
-/// An 8 x 64 scan with a return on every pixel's centre ray (ranges 5..12 m), in the organized layout.
+/// An 8 x 64 scan with a return on every pixel's centre ray (ranges 5..12 m), in the organized
+/// layout.
 mobs::CObservation3DRangeScan fullScan() {
   core::SensorModel s;
   s.rows = 8;
@@ -63,7 +64,6 @@ std::size_t inserted(const mobs::CObservation3DRangeScan& o) {
   return map.size();
 }
 
-
 }  // namespace
 
 TEST(RangeScanTagging, MarkSetsTheDynamicBitAndKeepsOtherLabels) {
@@ -81,8 +81,8 @@ TEST(RangeScanTagging, MarkSetsTheDynamicBitAndKeepsOtherLabels) {
   for (int r = 0; r < 8; r++)
     for (int c = 0; c < 64; c++) set += o.pixelLabels->checkLabel(r, c, 1);
   EXPECT_EQ(set, 13);
-  EXPECT_EQ(o.points3D_x.size(), 512u);  // geometry untouched
-  auto back = dynobj::test::serializeRoundTrip(o);               // labels are serialized
+  EXPECT_EQ(o.points3D_x.size(), 512u);             // geometry untouched
+  auto back = dynobj::test::serializeRoundTrip(o);  // labels are serialized
   EXPECT_TRUE(back->pixelLabels->checkLabel(3, 11, 1));
   // Marking again with another mask moves the bit (no stale labels).
   cv::Mat_<std::uint8_t> other(8, 64, std::uint8_t{0});
@@ -105,13 +105,15 @@ TEST(RangeScanTagging, DropRemovesExactlyTheFlaggedPointsAndRestoreGivesThemBack
   for (std::size_t i = 0; i < o.points3D_x.size(); i++)
     EXPECT_FALSE(someMask()(o.points3D_idxs_y[i], o.points3D_idxs_x[i]));
 
-  auto back = dynobj::test::serializeRoundTrip(o);  // through serialization (and MRPT 2.5.8's transposed layers)
+  auto back = dynobj::test::serializeRoundTrip(
+      o);  // through serialization (and MRPT 2.5.8's transposed layers)
   const auto rs = dm::restoreDynamic(*back);
   EXPECT_EQ(rs.points_restored, 13u);
   EXPECT_EQ(back->points3D_x.size(), 512u);
   EXPECT_TRUE(back->rangeImageOtherLayers.count(dm::kDynamicLayer) == 0);
   for (int r = 0; r < 8; r++)
-    for (int c = 0; c < 64; c++) ASSERT_EQ(back->rangeImage(r, c), original.rangeImage(r, c)) << r << "," << c;
+    for (int c = 0; c < 64; c++)
+      ASSERT_EQ(back->rangeImage(r, c), original.rangeImage(r, c)) << r << "," << c;
   core::LidarFrame a, b;
   dm::ObservationConverter().convert(original, a);
   dm::ObservationConverter().convert(*back, b);

@@ -74,7 +74,8 @@ TEST(RawlogReader, ReadsBothFormats) {
     EXPECT_EQ(err, "");
   }
   // Format #1 (actions + sensory frames): MRPT's own ICP-SLAM demo log.
-  RawlogReader sf("/usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog");
+  RawlogReader sf(
+      "/usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog");
   RawlogEntry e;
   std::size_t n = 0, with_actions = 0;
   while (sf.next(e)) {

@@ -68,7 +68,8 @@ TEST(RealScans, Vlp16VelodyneScanGives16RingsAndEveryMrptPoint) {
   EXPECT_EQ(st.input_points, mrpt_points);
   EXPECT_EQ(st.invalid + st.outside_fov, 0u);
   EXPECT_EQ(st.pixels_set + st.hidden, mrpt_points);
-  EXPECT_TRUE(std::all_of(f.point_pixel.begin(), f.point_pixel.end(), [](int p) { return p >= 0; }));
+  EXPECT_TRUE(
+      std::all_of(f.point_pixel.begin(), f.point_pixel.end(), [](int p) { return p >= 0; }));
   EXPECT_TRUE(f.has_intensity);
   EXPECT_GT(f.timestamp_ns, INT64_C(1519600000000000000));  // 2018-02-26
   // Rows are ordered by elevation: ring 0 at +15 deg ... ring 15 at -15 deg, 2 deg apart.

@@ -88,8 +88,10 @@ void LidarSimulator::poseWorld(double t, std::vector<Posed>& out) const {
     Posed q;
     q.part = p;
     q.actor = actor;
-    if (p.kind == Part::Kind::Box) boundingSphere(p.box, q.center, q.radius);
-    else boundingSphere(p.cylinder, q.center, q.radius);
+    if (p.kind == Part::Kind::Box)
+      boundingSphere(p.box, q.center, q.radius);
+    else
+      boundingSphere(p.cylinder, q.center, q.radius);
     out.push_back(q);
   };
   for (const Part& p : s_.statics) add(p, -1);
@@ -175,10 +177,11 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
         if (!mat || best.t < sm.min_range) continue;
         const double cosi = std::abs(best.normal.dot(ray.dir));
         const double refl = reflectivity(*mat, best.uv);
-        const double expected = s_.intensity_gain * refl * (0.3 + 0.7 * cosi) * rangeGain(best.t, s_.intensity_near_range);
-        if (uni(rng) < s_.dropout) continue;                              // random no-return
-        if (cosi < s_.grazing_cos && uni(rng) < 0.8) continue;             // grazing incidence
-        if (expected < 3.0) continue;                                      // too weak to detect
+        const double expected = s_.intensity_gain * refl * (0.3 + 0.7 * cosi) *
+                                rangeGain(best.t, s_.intensity_near_range);
+        if (uni(rng) < s_.dropout) continue;                    // random no-return
+        if (cosi < s_.grazing_cos && uni(rng) < 0.8) continue;  // grazing incidence
+        if (expected < 3.0) continue;                           // too weak to detect
         const double rng_m = best.t + s_.range_sigma * gauss(rng);
         if (rng_m <= sm.min_range || rng_m > sm.max_range) continue;
         const double inten =

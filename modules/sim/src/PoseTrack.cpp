@@ -8,7 +8,9 @@
 namespace dynobj::sim {
 namespace {
 
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+double wrapAngle(double a) {
+  return std::atan2(std::sin(a), std::cos(a));
+}
 
 /// Appends a walk from the last key to `to` at `speed`, then a pause.
 void walkTo(std::vector<PoseTrack::Key>& keys, const Eigen::Vector2d& to, double speed,
@@ -60,7 +62,9 @@ Eigen::Vector2d PoseTrack::velocity(double t) const {
   return {(b.pose.x - a.pose.x) / span, (b.pose.y - a.pose.y) / span};
 }
 
-PoseTrack PoseTrack::stationary(const Pose2& p) { return PoseTrack({{0.0, p}}); }
+PoseTrack PoseTrack::stationary(const Pose2& p) {
+  return PoseTrack({{0.0, p}});
+}
 
 PoseTrack PoseTrack::waypoints(const std::vector<Eigen::Vector2d>& pts, double speed, double pause,
                                bool loop, double start, double duration) {
@@ -90,12 +94,16 @@ PoseTrack PoseTrack::randomWalk(const Eigen::Vector4d& region, const Eigen::Vect
   if (!(speed_lo > 0 && speed_hi >= speed_lo))
     throw std::invalid_argument("random_walk: need 0 < speed_lo <= speed_hi");
   std::uniform_real_distribution<double> ux(region[0], region[2]), uy(region[1], region[3]);
-  std::uniform_real_distribution<double> us(speed_lo, speed_hi), up(pause_lo, std::max(pause_lo, pause_hi));
+  std::uniform_real_distribution<double> us(speed_lo, speed_hi),
+      up(pause_lo, std::max(pause_lo, pause_hi));
   std::vector<Key> keys{{0.0, {from.x(), from.y(), 0.0}}};
   if (start > 0) keys.push_back({start, keys.back().pose});
   while (keys.back().t < duration) {
     Eigen::Vector2d target(ux(rng), uy(rng));
-    for (int tries = 0; tries < 10 && (target - Eigen::Vector2d(keys.back().pose.x, keys.back().pose.y)).norm() < 2.0; tries++)
+    for (int tries = 0;
+         tries < 10 &&
+         (target - Eigen::Vector2d(keys.back().pose.x, keys.back().pose.y)).norm() < 2.0;
+         tries++)
       target = Eigen::Vector2d(ux(rng), uy(rng));
     const double speed = us(rng), pause = up(rng);
     const std::size_t before = keys.size();

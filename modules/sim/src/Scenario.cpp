@@ -179,8 +179,8 @@ class Loader {
   }
 
   PoseTrack track(const YamlView& t, double start) {
-    t.onlyKeys({"type", "points", "speed", "pause", "loop", "start", "region", "from", "at",
-                "yaw_deg"});
+    t.onlyKeys(
+        {"type", "points", "speed", "pause", "loop", "start", "region", "from", "at", "yaw_deg"});
     const std::string type = t.str("type", "waypoints");
     try {
       if (type == "stationary") {
@@ -235,13 +235,16 @@ class Loader {
     a.onlyKeys({"class", "count", "height", "trajectory", "material"});
     const std::string cls_name = a.str("class", "pedestrian");
     ActorClass cls = ActorClass::Pedestrian;
-    if (cls_name == "cyclist") cls = ActorClass::Cyclist;
-    else if (cls_name == "car") cls = ActorClass::Car;
+    if (cls_name == "cyclist")
+      cls = ActorClass::Cyclist;
+    else if (cls_name == "car")
+      cls = ActorClass::Car;
     else if (cls_name != "pedestrian")
       a.child("class").fail("unknown class '" + cls_name + "' (pedestrian, cyclist, car)");
     const int count = static_cast<int>(a.num("count", 1));
     if (count < 1) a.child("count").fail("must be >= 1");
-    const double default_h = cls == ActorClass::Car ? 1.5 : (cls == ActorClass::Cyclist ? 1.75 : 1.75);
+    const double default_h =
+        cls == ActorClass::Car ? 1.5 : (cls == ActorClass::Cyclist ? 1.75 : 1.75);
     const YamlView t = a.child("trajectory");
     for (int k = 0; k < count; k++) {
       Actor actor;
@@ -261,7 +264,8 @@ class Loader {
   std::uint32_t surfaces_ = 0;
 };
 
-void applyOverride(::mrpt::containers::yaml& doc, const std::string& key, const std::string& value) {
+void applyOverride(::mrpt::containers::yaml& doc, const std::string& key,
+                   const std::string& value) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
   std::string p;
@@ -269,7 +273,8 @@ void applyOverride(::mrpt::containers::yaml& doc, const std::string& key, const 
   if (parts.empty()) throw ScenarioError("empty override key");
   ::mrpt::containers::yaml::node_t* node = &doc.node();
   for (std::size_t i = 0; i < parts.size(); i++) {
-    if (!node->isMap()) throw ScenarioError("override '" + key + "': '" + parts[i] + "' is not in a map");
+    if (!node->isMap())
+      throw ScenarioError("override '" + key + "': '" + parts[i] + "' is not in a map");
     auto& map = node->asMap();
     ::mrpt::containers::yaml::node_t k;
     k.d.emplace<::mrpt::containers::yaml::scalar_t>(parts[i]);
@@ -288,9 +293,12 @@ void applyOverride(::mrpt::containers::yaml& doc, const std::string& key, const 
 
 const char* toString(ActorClass c) {
   switch (c) {
-    case ActorClass::Pedestrian: return "pedestrian";
-    case ActorClass::Cyclist: return "cyclist";
-    case ActorClass::Car: return "car";
+    case ActorClass::Pedestrian:
+      return "pedestrian";
+    case ActorClass::Cyclist:
+      return "cyclist";
+    case ActorClass::Car:
+      return "car";
   }
   return "?";
 }
@@ -326,7 +334,7 @@ std::vector<Part> actorBody(ActorClass cls, double height, const Material& mater
       cyl(-0.05, 0, 0.11, 1.55 * s, 1.78 * s, 1.6);
       break;
     case ActorClass::Car:
-      box(0, 0, 0.3 + 0.5 * s, 4.4, 1.8, 1.0 * s);   // body
+      box(0, 0, 0.3 + 0.5 * s, 4.4, 1.8, 1.0 * s);        // body
       box(-0.3, 0, 0.3 + 1.225 * s, 2.4, 1.6, 0.45 * s);  // cabin on top of the body
       break;
   }
@@ -347,8 +355,9 @@ Scenario Scenario::fromYamlText(const std::string& text, const std::string& shar
   Scenario s;
   try {
     if (!doc.isMap())
-      throw detail::ScenarioError("not valid YAML, or not a map of key: value (the YAML parser's "
-                                  "message, if any, is printed above)");
+      throw detail::ScenarioError(
+          "not valid YAML, or not a map of key: value (the YAML parser's "
+          "message, if any, is printed above)");
     for (const auto& [k, v] : overrides) applyOverride(doc, k, v);
     Loader(s, share_dir).load(YamlView(&doc.node(), ""));
   } catch (const detail::ScenarioError& e) {

@@ -15,7 +15,9 @@
 namespace dynobj::sim {
 namespace {
 
-std::string partial(const std::string& p) { return p + ".partial"; }
+std::string partial(const std::string& p) {
+  return p + ".partial";
+}
 
 void renameInto(const std::string& path) {
   if (std::rename(partial(path).c_str(), path.c_str()) != 0)
@@ -39,7 +41,8 @@ SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scena
   if (!rawlog_->open(partial(rawlogPath())))
     throw std::runtime_error("cannot write '" + partial(rawlogPath()) + "'");
   labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
-  instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows, s_.sensor.cols, true);
+  instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows,
+                                                       s_.sensor.cols, true);
   tum_.open(partial(tumPath()));
   objects_.open(partial(objectsPath()));
   if (!tum_ || !objects_) throw std::runtime_error("cannot write into '" + out_dir + "'");
@@ -99,8 +102,8 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
 
   const Eigen::Quaterniond q(sw.sensor_pose.linear());
   const Eigen::Vector3d& p = sw.sensor_pose.translation();
-  tum_ << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "."
-       << std::setw(9) << std::setfill('0') << sw.timestamp_ns % 1000000000 << std::setfill(' ')
+  tum_ << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "." << std::setw(9)
+       << std::setfill('0') << sw.timestamp_ns % 1000000000 << std::setfill(' ')
        << std::setprecision(6) << " " << p.x() << " " << p.y() << " " << p.z() << " " << q.x()
        << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
   for (const ActorState& a : sw.actors)

@@ -13,7 +13,8 @@ bool intersect(const Box& b, const Ray& ray, double t_max, Hit& hit) {
   const Eigen::Vector3d o(c * d0.x() + s * d0.y(), -s * d0.x() + c * d0.y(), d0.z());
   const Eigen::Vector3d d(c * ray.dir.x() + s * ray.dir.y(), -s * ray.dir.x() + c * ray.dir.y(),
                           ray.dir.z());
-  double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+  double t0 = -std::numeric_limits<double>::infinity(),
+         t1 = std::numeric_limits<double>::infinity();
   int axis0 = -1;
   double sign0 = 0;
   for (int k = 0; k < 3; k++) {  // slab test, remembering the entry face

@@ -10,9 +10,10 @@ namespace {
 
 /// Integer hash -> [0, 1).
 double hash01(std::int64_t x, std::int64_t y, std::uint32_t seed) {
-  std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
-                    (static_cast<std::uint64_t>(y) + 0x632BE59BD9B4E019ULL) * 0xC2B2AE3D27D4EB4FULL ^
-                    seed * 0x165667B19E3779F9ULL;
+  std::uint64_t h =
+      static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
+      (static_cast<std::uint64_t>(y) + 0x632BE59BD9B4E019ULL) * 0xC2B2AE3D27D4EB4FULL ^
+      seed * 0x165667B19E3779F9ULL;
   h ^= h >> 31;
   h *= 0xBF58476D1CE4E5B9ULL;
   h ^= h >> 29;
@@ -37,12 +38,15 @@ double posters(const Eigen::Vector2d& uv, double scale, std::uint32_t seed) {
   const auto iu = static_cast<std::int64_t>(cu), iv = static_cast<std::int64_t>(cv);
   if (hash01(iu, iv, seed) < 0.25) return 0.5;  // empty wall here
   const double lu = uv.x() / cell - cu, lv = uv.y() / cell - cv;
-  const double u0 = 0.1 + 0.3 * hash01(iu, iv, seed + 1), u1 = u0 + 0.3 + 0.25 * hash01(iu, iv, seed + 2);
-  const double v0 = 0.1 + 0.3 * hash01(iu, iv, seed + 3), v1 = v0 + 0.3 + 0.25 * hash01(iu, iv, seed + 4);
+  const double u0 = 0.1 + 0.3 * hash01(iu, iv, seed + 1),
+               u1 = u0 + 0.3 + 0.25 * hash01(iu, iv, seed + 2);
+  const double v0 = 0.1 + 0.3 * hash01(iu, iv, seed + 3),
+               v1 = v0 + 0.3 + 0.25 * hash01(iu, iv, seed + 4);
   if (lu < u0 || lu > u1 || lv < v0 || lv > v1) return 0.5;
   const double inner = hash01(iu, iv, seed + 5) < 0.5 ? 0.05 : 0.95;
   // Some posters carry a stripe of text-like blocks: corners for ORB.
-  const double text = valueNoise(uv.x() * 8 / scale, uv.y() * 8 / scale, seed + 6) > 0.55 ? 0.3 : 0.0;
+  const double text =
+      valueNoise(uv.x() * 8 / scale, uv.y() * 8 / scale, seed + 6) > 0.55 ? 0.3 : 0.0;
   return std::clamp(inner - (inner > 0.5 ? text : -text), 0.0, 1.0);
 }
 
@@ -72,18 +76,25 @@ double reflectivity(const Material& m, const Eigen::Vector2d& uv) {
   const double s = std::max(m.scale, 1e-3);
   double p = 0.5;  // pattern value in [0, 1], 0.5 = albedo
   switch (m.pattern) {
-    case Pattern::Plain: break;
+    case Pattern::Plain:
+      break;
     case Pattern::Noise:
       p = 0.65 * valueNoise(uv.x() / s, uv.y() / s, m.seed) +
           0.35 * valueNoise(uv.x() * 4 / s, uv.y() * 4 / s, m.seed + 9);
       break;
-    case Pattern::Stripes: p = std::fmod(std::abs(uv.x()) / s, 1.0) < 0.5 ? 0.1 : 0.9; break;
+    case Pattern::Stripes:
+      p = std::fmod(std::abs(uv.x()) / s, 1.0) < 0.5 ? 0.1 : 0.9;
+      break;
     case Pattern::Checker:
       p = (static_cast<std::int64_t>(std::floor(uv.x() / s) + std::floor(uv.y() / s)) & 1) ? 0.15
-                                                                                            : 0.85;
+                                                                                           : 0.85;
       break;
-    case Pattern::Posters: p = posters(uv, s, m.seed); break;
-    case Pattern::Markings: p = markings(uv, s, m.seed); break;
+    case Pattern::Posters:
+      p = posters(uv, s, m.seed);
+      break;
+    case Pattern::Markings:
+      p = markings(uv, s, m.seed);
+      break;
   }
   // Fine grain on every surface (paint, dirt): real signal images are never flat.
   const double grain = valueNoise(uv.x() * 20, uv.y() * 20, m.seed + 77) - 0.5;

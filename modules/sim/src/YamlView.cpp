@@ -79,7 +79,8 @@ std::vector<double> YamlView::nums(const std::string& key, std::size_t expected_
   const YamlView c = child(key);
   auto v = c.numbers();
   if (expected_size && v.size() != expected_size)
-    c.fail("expected " + std::to_string(expected_size) + " numbers, got " + std::to_string(v.size()));
+    c.fail("expected " + std::to_string(expected_size) + " numbers, got " +
+           std::to_string(v.size()));
   return v;
 }
 

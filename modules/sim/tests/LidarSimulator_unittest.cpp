@@ -33,7 +33,8 @@ std::string base(const std::string& extra,
          "\nmount: [0, 0, 1.0]\nnoise: {range_sigma: 0, dropout: 0, grazing_cos: 0}\n"
          "odometry: {enabled: false}\n"
          "floor: {size: [100, 100]}\n"
-         "platform: " + platform + "\n" + extra;
+         "platform: " +
+         platform + "\n" + extra;
 }
 
 Scenario load(const std::string& text) {
@@ -64,13 +65,15 @@ TEST(LidarSimulator, FloorAtKnownDistance) {
 TEST(LidarSimulator, CylinderAtKnownDistanceAndLabels) {
   // A moving pedestrian straight ahead at 6 m, a standing one on the left, and one hidden
   // behind a wall on the right.
-  const LidarSimulator sim(load(base(
-      "static:\n  - {box: {center: [0, -5, 2], size: [20, 0.2, 4]}}\n"
-      "  - {cylinder: {center: [-8, 0], radius: 0.5, height: 3}}\n"
-      "actors:\n"
-      "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[6, -1], [6, 1]], speed: 0.5}}\n"
-      "  - {class: pedestrian, height: 1.75, trajectory: {type: stationary, at: [0, 4]}}\n"
-      "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[-3, -8], [3, -8]], speed: 1}}\n")));
+  const LidarSimulator sim(load(
+      base("static:\n  - {box: {center: [0, -5, 2], size: [20, 0.2, 4]}}\n"
+           "  - {cylinder: {center: [-8, 0], radius: 0.5, height: 3}}\n"
+           "actors:\n"
+           "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[6, -1], "
+           "[6, 1]], speed: 0.5}}\n"
+           "  - {class: pedestrian, height: 1.75, trajectory: {type: stationary, at: [0, 4]}}\n"
+           "  - {class: pedestrian, height: 1.75, trajectory: {type: waypoints, points: [[-3, -8], "
+           "[3, -8]], speed: 1}}\n")));
   const auto sw = sim.simulate(2);
   // Static cylinder (r = 0.5) 8 m behind the sensor. Column 0's ray is pi/64 off the direction
   // to its axis: horizontal distance 8 cos(d) - sqrt(0.25 - 64 sin^2(d)), at elevation 2 deg.
@@ -92,8 +95,9 @@ TEST(LidarSimulator, CylinderAtKnownDistanceAndLabels) {
 }
 
 TEST(LidarSimulator, DeterministicPerSweep) {
-  const LidarSimulator sim(Scenario::fromYamlFile(
-      std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml", DYNOBJ_SHARE_DIR, {{"frames", "10"}}));
+  const LidarSimulator sim(
+      Scenario::fromYamlFile(std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml",
+                             DYNOBJ_SHARE_DIR, {{"frames", "10"}}));
   const auto a = sim.simulate(5);
   sim.simulate(3);
   const auto b = sim.simulate(5);
@@ -104,9 +108,10 @@ TEST(LidarSimulator, DeterministicPerSweep) {
 }
 
 TEST(LidarSimulator, SequenceFilesRoundTrip) {
-  const LidarSimulator sim(load(base(
-      "actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, 2]], speed: 1}}\n",
-      "{trajectory: {type: waypoints, points: [[0, 0], [3, 0]], speed: 1, loop: false}}")));
+  const LidarSimulator sim(load(
+      base("actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, "
+           "2]], speed: 1}}\n",
+           "{trajectory: {type: waypoints, points: [[0, 0], [3, 0]], speed: 1, loop: false}}")));
   const std::string dir = ::mrpt::system::getTempFileName() + "_seq";
   std::vector<SimulatedSweep> sweeps;
   {
@@ -162,7 +167,8 @@ TEST(LidarSimulator, MotionDistortionShiftsColumnsOnlyWhenMoving) {
   // fired later see the wall from nearer, so ranges differ from the undistorted sweep; standing
   // still, nothing changes.
   const std::string wall = "static:\n  - {box: {center: [8, 0, 1.5], size: [0.2, 40, 3]}}\n";
-  const std::string drive = "{trajectory: {type: waypoints, points: [[-10, 0], [10, 0]], speed: 5, loop: false}}";
+  const std::string drive =
+      "{trajectory: {type: waypoints, points: [[-10, 0], [10, 0]], speed: 5, loop: false}}";
   auto run = [&](const std::string& platform, bool distortion) {
     auto s = load(base(wall, platform));
     s.motion_distortion = distortion;

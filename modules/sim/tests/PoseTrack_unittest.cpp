@@ -13,7 +13,7 @@ TEST(PoseTrack, WaypointsWithStartPauseAndLoop) {
   EXPECT_NEAR(tr.velocity(3.5).x(), 2.0, 1e-12);
   EXPECT_NEAR(tr.at(6.5).x, 10.0, 1e-12);  // pausing at the waypoint
   EXPECT_NEAR(tr.speed(6.5), 0.0, 1e-12);
-  EXPECT_NEAR(tr.at(8.0).x, 8.0, 1e-12);   // walking back since t = 7
+  EXPECT_NEAR(tr.at(8.0).x, 8.0, 1e-12);  // walking back since t = 7
   EXPECT_NEAR(tr.velocity(8.0).x(), -2.0, 1e-12);
   EXPECT_NEAR(std::abs(tr.at(8.0).yaw), M_PI, 1e-12);
   EXPECT_GE(tr.keys().back().t, 30.0);

@@ -38,7 +38,8 @@ TEST(Scenario, ActorsFromGroups) {
   const Scenario s = Scenario::fromYamlText(
       kMinimal +
           "actors:\n"
-          "  - {class: pedestrian, count: 3, trajectory: {type: random_walk, region: [-5,-5,5,5]}}\n"
+          "  - {class: pedestrian, count: 3, trajectory: {type: random_walk, region: "
+          "[-5,-5,5,5]}}\n"
           "  - {class: car, trajectory: {type: waypoints, points: [[0,0],[10,0]], speed: 5}}\n",
       DYNOBJ_SHARE_DIR, {}, "t.yaml");
   ASSERT_EQ(s.actors.size(), 4u);
@@ -50,19 +51,23 @@ TEST(Scenario, ActorsFromGroups) {
 TEST(Scenario, ErrorsNameFileAndKey) {
   EXPECT_NE(errorOf(kMinimal + "frams: 3\n").find("t.yaml: (root): unknown key 'frams'"),
             std::string::npos);
-  EXPECT_NE(errorOf(kMinimal + "noise: {range_sigma: lots}\n").find("noise.range_sigma: 'lots' is not a number"),
+  EXPECT_NE(errorOf(kMinimal + "noise: {range_sigma: lots}\n")
+                .find("noise.range_sigma: 'lots' is not a number"),
             std::string::npos);
   EXPECT_NE(errorOf("name: x\n").find("platform: required key is missing"), std::string::npos);
-  EXPECT_NE(errorOf(kMinimal + "actors:\n  - {class: dragon, trajectory: {type: stationary, at: [0,0]}}\n")
+  EXPECT_NE(errorOf(kMinimal +
+                    "actors:\n  - {class: dragon, trajectory: {type: stationary, at: [0,0]}}\n")
                 .find("actors[0].class: unknown class 'dragon'"),
             std::string::npos);
   EXPECT_NE(errorOf(kMinimal + "static:\n  - {box: {center: [0, 0], size: [1, 1, 1]}}\n")
                 .find("static[0].box.center: expected 3 numbers"),
             std::string::npos);
-  EXPECT_NE(errorOf("name: x\nsensor: sensors/none.ini\nplatform: {trajectory: {type: stationary, at: [0,0]}}\n")
+  EXPECT_NE(errorOf("name: x\nsensor: sensors/none.ini\nplatform: {trajectory: {type: stationary, "
+                    "at: [0,0]}}\n")
                 .find("none.ini"),
             std::string::npos);
-  EXPECT_NE(errorOf(kMinimal, {{"noise.range_sigma", "1"}}).find("no key 'noise'"), std::string::npos);
+  EXPECT_NE(errorOf(kMinimal, {{"noise.range_sigma", "1"}}).find("no key 'noise'"),
+            std::string::npos);
   EXPECT_NE(errorOf("- a\n- b\n").find("not a map of key: value"), std::string::npos);
 }
 

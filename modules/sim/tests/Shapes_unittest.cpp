@@ -7,7 +7,9 @@
 using namespace dynobj::sim;
 
 namespace {
-Ray ray(Eigen::Vector3d o, Eigen::Vector3d d) { return {o, d.normalized()}; }
+Ray ray(Eigen::Vector3d o, Eigen::Vector3d d) {
+  return {o, d.normalized()};
+}
 }  // namespace
 
 TEST(Shapes, BoxWallAtKnownDistance) {
@@ -18,9 +20,9 @@ TEST(Shapes, BoxWallAtKnownDistance) {
   EXPECT_NEAR(h.normal.x(), -1.0, 1e-12);
   ASSERT_TRUE(intersect(wall, ray({0, 0, 1}, {1, 1, 0}), 100, h));  // 45 deg: 5 * sqrt(2)
   EXPECT_NEAR(h.t, 5.0 * std::sqrt(2.0), 1e-9);
-  EXPECT_FALSE(intersect(wall, ray({0, 0, 1}, {-1, 0, 0}), 100, h));  // behind
-  EXPECT_FALSE(intersect(wall, ray({0, 0, 1}, {1, 0, 0}), 4.9, h));   // beyond t_max
-  EXPECT_FALSE(intersect(wall, ray({5.1, 0, 1}, {1, 0, 0}), 100, h)); // starts inside
+  EXPECT_FALSE(intersect(wall, ray({0, 0, 1}, {-1, 0, 0}), 100, h));   // behind
+  EXPECT_FALSE(intersect(wall, ray({0, 0, 1}, {1, 0, 0}), 4.9, h));    // beyond t_max
+  EXPECT_FALSE(intersect(wall, ray({5.1, 0, 1}, {1, 0, 0}), 100, h));  // starts inside
 }
 
 TEST(Shapes, YawedBox) {

@@ -9,7 +9,6 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
-
 #include <string>
 #include <vector>
 
@@ -23,23 +22,24 @@ struct ClusteringParams : public StageParams {
   double vertical_distance = 0.6;     ///< epsilon_z [m]
   int min_points = 4;                 ///< smaller clusters are dropped
   int max_points = 3000;              ///< larger clusters are dropped (walls, shelves, the floor)
-  double max_length = 6.0;            ///< [m] longer clusters are dropped too (0 = no limit): cars fit
-  std::string search = "grid";        ///< neighbour search: grid | kdtree | image
-  double voxel = 0.17;                ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
-  int max_window = 16;                ///< image search: at most this many columns each side
+  double max_length = 6.0;      ///< [m] longer clusters are dropped too (0 = no limit): cars fit
+  std::string search = "grid";  ///< neighbour search: grid | kdtree | image
+  double voxel = 0.17;          ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
+  int max_window = 16;          ///< image search: at most this many columns each side
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
 };
 
 struct Cluster {
-  std::vector<int> pixels;            ///< pixel indices (row * W + col) of its points
-  Eigen::Vector3d centroid{0, 0, 0};  ///< sensor frame [m]
+  std::vector<int> pixels;                     ///< pixel indices (row * W + col) of its points
+  Eigen::Vector3d centroid{0, 0, 0};           ///< sensor frame [m]
   Eigen::Vector3d min{0, 0, 0}, max{0, 0, 0};  ///< axis-aligned bounds
-  Eigen::Vector2d main_direction{1, 0};  ///< Eq. (22): horizontal PCA main axis (unit)
+  Eigen::Vector2d main_direction{1, 0};        ///< Eq. (22): horizontal PCA main axis (unit)
   double elongation = 1.0;  ///< sqrt(lambda1 / lambda2) of the horizontal covariance
   double length = 0.0;      ///< extent along the main axis [m]
-  Eigen::Vector3d end_a{0, 0, 0}, end_b{0, 0, 0};  ///< the two ends along the main axis (z = centroid's)
+  Eigen::Vector3d end_a{0, 0, 0},
+      end_b{0, 0, 0};  ///< the two ends along the main axis (z = centroid's)
 };
 
 /// Fills centroid, bounds and PCA fields of `c` from its pixels.
@@ -56,8 +56,8 @@ class Clusterer {
   void clusterImage(const LidarFrame& frame, std::vector<int>& label);
   void clusterKdTree(const LidarFrame& frame, std::vector<int>& label);
   void clusterPoints(const LidarFrame& frame, std::vector<int>& label);  ///< grid or kdtree
-  void linkKdTree(std::vector<int>& parent);  ///< union-find over pts_
-  void linkGrid(std::vector<int>& parent);    ///< the same links, from a cell grid
+  void linkKdTree(std::vector<int>& parent);                             ///< union-find over pts_
+  void linkGrid(std::vector<int>& parent);  ///< the same links, from a cell grid
 
   ClusteringParams p_;
   std::vector<int> pixels_;
@@ -65,10 +65,10 @@ class Clusterer {
   std::vector<int> count_, slot_;
   std::vector<int> label_, parent_, rep_of_, first_feature_;  ///< per-frame scratch, kept
   std::vector<std::uint64_t> slot_key_;  ///< voxel hash table: key of each slot ...
-  std::vector<int> slot_rep_;             ///< ... and its representative (index in pts_)
+  std::vector<int> slot_rep_;            ///< ... and its representative (index in pts_)
   std::vector<std::pair<std::uint64_t, int>> cells_;  ///< grid cell key, index in pts_
-  std::vector<Eigen::Vector3f> spts_;  ///< pts_ in cell order
-  std::vector<int> sparent_;           ///< union-find over spts_
+  std::vector<Eigen::Vector3f> spts_;                 ///< pts_ in cell order
+  std::vector<int> sparent_;                          ///< union-find over spts_
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
 

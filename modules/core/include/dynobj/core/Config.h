@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Strict INI readers: a value that does not parse is an error naming [section] key, never a silent 0.
+// Strict INI readers: a value that does not parse is an error naming [section] key, never a silent
+// 0.
 #pragma once
 
 #include <mrpt/config/CConfigFileBase.h>

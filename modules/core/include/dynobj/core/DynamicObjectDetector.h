@@ -4,9 +4,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,22 +50,22 @@ struct TrackedObject {
   Eigen::Vector3d centroid{0, 0, 0};  ///< sensor frame [m]
   Eigen::Vector2d velocity{0, 0};     ///< sensor frame [m/s]
   Eigen::Vector3d box_min{0, 0, 0}, box_max{0, 0, 0};
-  int points = 0;       ///< pixels of the object this frame (grown when dynamic)
+  int points = 0;  ///< pixels of the object this frame (grown when dynamic)
   bool dynamic = false;
-  int age = 0;          ///< frames since first seen
+  int age = 0;  ///< frames since first seen
 };
 
 struct StageTimings {
-  double foreground = 0, ego_motion = 0, clustering = 0, association = 0, movement = 0,
-         ground = 0, region_growing = 0, total = 0;  ///< [ms]
+  double foreground = 0, ego_motion = 0, clustering = 0, association = 0, movement = 0, ground = 0,
+         region_growing = 0, total = 0;  ///< [ms]
 };
 
 struct DetectionResult {
   std::int64_t timestamp_ns = 0;
   long frame_index = 0;
-  cv::Mat_<std::uint8_t> dynamic;   ///< 255 = dynamic pixel
-  cv::Mat_<std::uint8_t> features;  ///< foreground feature pixels (Eq. 4), for inspection
-  cv::Mat_<std::uint8_t> seeds;     ///< points of the accepted clusters (region-growing seeds)
+  cv::Mat_<std::uint8_t> dynamic;      ///< 255 = dynamic pixel
+  cv::Mat_<std::uint8_t> features;     ///< foreground feature pixels (Eq. 4), for inspection
+  cv::Mat_<std::uint8_t> seeds;        ///< points of the accepted clusters (region-growing seeds)
   std::vector<TrackedObject> objects;  ///< tracks seen this frame
   EgoMotion ego_motion;
   StageTimings timings;
@@ -78,8 +77,9 @@ class DynamicObjectDetector {
 
   /// Processes the next frame. `external_motion`: T_{prev<-cur} from odometry or SLAM, used
   /// instead of the intensity ego-motion. The returned reference is valid until the next call.
-  const DetectionResult& process(const LidarFrame& frame,
-                                 const std::optional<Eigen::Isometry3d>& external_motion = std::nullopt);
+  const DetectionResult& process(
+      const LidarFrame& frame,
+      const std::optional<Eigen::Isometry3d>& external_motion = std::nullopt);
   void reset();
 
   const DetectorParams& params() const { return params_; }

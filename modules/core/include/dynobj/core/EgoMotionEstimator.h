@@ -9,7 +9,6 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
-
 #include <random>
 #include <string>
 #include <vector>
@@ -20,24 +19,24 @@
 namespace dynobj::core {
 
 struct EgoMotionParams : public StageParams {
-  int features = 800;               ///< ORB nfeatures
-  double scale_factor = 1.2;        ///< ORB scaleFactor
-  int levels = 1;                   ///< ORB nlevels (the 32 px padding gives level 0 room)
-  int fast_threshold = 10;          ///< ORB fastThreshold (10 suits sparse indoor scenes)
-  int upsample = 1;                 ///< vertical upsampling factor (1 = none; 2 = same accuracy, slower)
-  double ratio = 0.8;               ///< Lowe ratio test
-  int match_window = 64;            ///< [columns] match only keypoints this close in azimuth
-                                    ///< (0 = all); on failure, all are tried before giving up
-  int border = 2;                   ///< [px] no keypoint this close to a no-return pixel
-  double inlier_distance = 0.10;    ///< [m] RANSAC inlier threshold at close range ...
+  int features = 800;         ///< ORB nfeatures
+  double scale_factor = 1.2;  ///< ORB scaleFactor
+  int levels = 1;             ///< ORB nlevels (the 32 px padding gives level 0 room)
+  int fast_threshold = 10;    ///< ORB fastThreshold (10 suits sparse indoor scenes)
+  int upsample = 1;           ///< vertical upsampling factor (1 = none; 2 = same accuracy, slower)
+  double ratio = 0.8;         ///< Lowe ratio test
+  int match_window = 64;      ///< [columns] match only keypoints this close in azimuth
+                              ///< (0 = all); on failure, all are tried before giving up
+  int border = 2;             ///< [px] no keypoint this close to a no-return pixel
+  double inlier_distance = 0.10;      ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
-  int iterations = 200;             ///< RANSAC iterations at most ...
-  double confidence = 0.9999;       ///< ... fewer once an all-inlier sample was drawn with this
-                                    ///< probability (1 = always all)
-  int refinements = 3;              ///< least-squares refits, inliers re-selected each time
-  int min_inliers = 25;             ///< fewer -> ego-motion failed
-  double min_inlier_ratio = 0.3;    ///< inliers / matches below this -> failed
-  int seed = 1;                     ///< RANSAC random seed
+  int iterations = 200;               ///< RANSAC iterations at most ...
+  double confidence = 0.9999;         ///< ... fewer once an all-inlier sample was drawn with this
+                                      ///< probability (1 = always all)
+  int refinements = 3;                ///< least-squares refits, inliers re-selected each time
+  int min_inliers = 25;               ///< fewer -> ego-motion failed
+  double min_inlier_ratio = 0.3;      ///< inliers / matches below this -> failed
+  int seed = 1;                       ///< RANSAC random seed
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -47,8 +46,8 @@ struct EgoMotionParams : public StageParams {
 struct EgoMotion {
   /// T_{prev<-cur}: maps points of the current frame into the previous frame (the robot's motion).
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-  bool ok = false;          ///< estimated with enough inliers (or given externally)
-  int matches = 0;          ///< ratio-test matches with 3D points on both sides
+  bool ok = false;  ///< estimated with enough inliers (or given externally)
+  int matches = 0;  ///< ratio-test matches with 3D points on both sides
   int inliers = 0;
   std::string source = "none";  ///< "intensity", "external", "constant-velocity", "none"
 };

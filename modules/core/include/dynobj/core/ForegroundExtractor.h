@@ -14,14 +14,14 @@
 namespace dynobj::core {
 
 struct ForegroundParams : public StageParams {
-  int kernel_half_width = 7;        ///< a [px]: kernel is 2a+1 columns wide (a > b: flat kernel)
-  int kernel_half_height = 1;       ///< b [px]: kernel is 2b+1 rows high
-  double sigma_horizontal = 3.5;    ///< sigma_m [px]
-  double sigma_vertical = 1.0;      ///< sigma_n [px]
-  double threshold = 14.0;          ///< theta [stretched intensity units, 0..255]
-  bool absolute = true;             ///< |f - h| > theta (darker objects too); false = paper's f - h > theta
-  double stretch_low = 1.0;         ///< percentile mapped to 32 (of 0..255)
-  double stretch_high = 99.0;       ///< percentile mapped to 223
+  int kernel_half_width = 7;      ///< a [px]: kernel is 2a+1 columns wide (a > b: flat kernel)
+  int kernel_half_height = 1;     ///< b [px]: kernel is 2b+1 rows high
+  double sigma_horizontal = 3.5;  ///< sigma_m [px]
+  double sigma_vertical = 1.0;    ///< sigma_n [px]
+  double threshold = 14.0;        ///< theta [stretched intensity units, 0..255]
+  bool absolute = true;  ///< |f - h| > theta (darker objects too); false = paper's f - h > theta
+  double stretch_low = 1.0;    ///< percentile mapped to 32 (of 0..255)
+  double stretch_high = 99.0;  ///< percentile mapped to 223
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

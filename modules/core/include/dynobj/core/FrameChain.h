@@ -4,7 +4,6 @@
 #pragma once
 
 #include <Eigen/Geometry>
-
 #include <deque>
 
 namespace dynobj::core {
@@ -17,7 +16,9 @@ class FrameChain {
   void push(long index, const Eigen::Isometry3d& motion, bool reliable);
   void clear() { items_.clear(); }
 
-  bool contains(long index) const { return !items_.empty() && index >= oldest() && index <= newest(); }
+  bool contains(long index) const {
+    return !items_.empty() && index >= oldest() && index <= newest();
+  }
   long oldest() const { return items_.front().index; }
   long newest() const { return items_.back().index; }
 

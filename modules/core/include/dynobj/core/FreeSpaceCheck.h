@@ -7,9 +7,8 @@
 // centroid came from viewpoint changes (the visible faces of a pillar turn as the robot walks by).
 #pragma once
 
-#include <opencv2/core.hpp>
-
 #include <deque>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <utility>
 
@@ -23,11 +22,11 @@ namespace dynobj::core {
 
 struct FreeSpaceParams : public StageParams {
   bool enabled = true;
-  double margin = 0.3;          ///< [m] ranges closer than margin + range_factor x range agree
+  double margin = 0.3;  ///< [m] ranges closer than margin + range_factor x range agree
   double range_factor = 0.02;
   double min_free_ratio = 0.5;  ///< free / (free + occupied) needed to stay a moving candidate
   int min_evidence = 3;         ///< fewer decisive points: no verdict (the candidate is kept)
-  int lookback = 10;            ///< compare with the frame this many frames back (or the oldest kept)
+  int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

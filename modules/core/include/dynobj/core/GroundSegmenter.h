@@ -14,8 +14,8 @@ namespace dynobj::core {
 
 struct GroundParams : public StageParams {
   double max_slope = 10.0 * M_PI / 180;  ///< [rad; deg in INI] steepest slope still ground
-  double height_tolerance = 0.25;        ///< [m] first return of a column: |z - ground z| below this
-  double max_step = 0.08;                ///< [m] a quarter of it is the noise allowance of the slope test
+  double height_tolerance = 0.25;  ///< [m] first return of a column: |z - ground z| below this
+  double max_step = 0.08;          ///< [m] a quarter of it is the noise allowance of the slope test
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -30,7 +30,7 @@ class GroundSegmenter {
  private:
   GroundParams p_;
   std::vector<float> zs_;
-  std::vector<std::uint8_t> have_last_;  ///< per column: the ground chain has started
+  std::vector<std::uint8_t> have_last_;   ///< per column: the ground chain has started
   std::vector<double> last_xy_, last_z_;  ///< per column: its last ground return
 };
 

@@ -7,10 +7,9 @@
 // (`# dynobj-instances v1 ...`, entries `<idx>:<object id>`) says which object each pixel hit.
 #pragma once
 
-#include <opencv2/core.hpp>
-
 #include <cstdint>
 #include <fstream>
+#include <opencv2/core.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>

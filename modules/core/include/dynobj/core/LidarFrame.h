@@ -4,9 +4,8 @@
 // each input point keeps its pixel, so per-pixel results map back to the input without loss.
 #pragma once
 
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "dynobj/core/SensorModel.h"
@@ -14,14 +13,14 @@
 namespace dynobj::core {
 
 struct LidarFrame {
-  SensorModel sensor;            ///< geometry the grid was built for (rows x cols)
-  std::int64_t timestamp_ns = 0; ///< sweep time [ns since the Unix epoch]
-  bool has_intensity = false;    ///< false: the source had no intensity (stages use range)
+  SensorModel sensor;             ///< geometry the grid was built for (rows x cols)
+  std::int64_t timestamp_ns = 0;  ///< sweep time [ns since the Unix epoch]
+  bool has_intensity = false;     ///< false: the source had no intensity (stages use range)
 
-  cv::Mat_<float> range;         ///< [m] Euclidean range, 0 = no return
-  cv::Mat_<float> intensity;     ///< sensor units; 0 where no return or no intensity
-  cv::Mat_<cv::Vec3f> xyz;       ///< [m] point in the sensor frame, (0,0,0) where no return
-  cv::Mat_<std::uint8_t> valid;  ///< 255 = return, 0 = none (usable as an OpenCV mask)
+  cv::Mat_<float> range;                ///< [m] Euclidean range, 0 = no return
+  cv::Mat_<float> intensity;            ///< sensor units; 0 where no return or no intensity
+  cv::Mat_<cv::Vec3f> xyz;              ///< [m] point in the sensor frame, (0,0,0) where no return
+  cv::Mat_<std::uint8_t> valid;         ///< 255 = return, 0 = none (usable as an OpenCV mask)
   cv::Mat_<std::int32_t> source_index;  ///< index of the input point shown here, -1 = none
 
   /// For every input point, the pixel (row * cols + col) it fell in, or -1 when it is not in the

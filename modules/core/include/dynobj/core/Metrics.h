@@ -2,9 +2,8 @@
 // Per-point confusion counts and the paper's metrics (Section IV-B): precision, recall, IoU, F1.
 #pragma once
 
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <optional>
 
 namespace dynobj::core {

@@ -12,7 +12,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-
 #include <utility>
 #include <vector>
 
@@ -23,17 +22,17 @@
 namespace dynobj::core {
 
 struct MovementParams : public StageParams {
-  int window = 5;                    ///< k: observations in the sliding window
-  double min_displacement = 0.25;    ///< epsilon_d [m] over the window
-  double min_straightness = 0.5;     ///< epsilon_o: f / f_a below this is drift
+  int window = 5;                                ///< k: observations in the sliding window
+  double min_displacement = 0.25;                ///< epsilon_d [m] over the window
+  double min_straightness = 0.5;                 ///< epsilon_o: f / f_a below this is drift
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
-  double long_object_elongation = 1.0;  ///< only clusters at least this elongated ...
-  double long_object_length = 0.0;      ///< ... and this long [m] are tested for Eq. (23)
-                                        ///< (defaults: every cluster; see rigid_tolerance)
+  double long_object_elongation = 1.0;           ///< only clusters at least this elongated ...
+  double long_object_length = 0.0;               ///< ... and this long [m] are tested for Eq. (23)
+                                                 ///< (defaults: every cluster; see rigid_tolerance)
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never
-  double max_speed = 30.0;           ///< [m/s] faster is an association error, not motion
+  double max_speed = 30.0;       ///< [m/s] faster is an association error, not motion
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -49,7 +48,8 @@ struct WindowEntry {
   WindowEntry(long f, const Eigen::Vector3d& c, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
       : frame(f), centroid(c), end_a(a), end_b(b) {}
 };
-/// A track's sliding window, oldest first (a vector: k is small, and it is allocated once per track).
+/// A track's sliding window, oldest first (a vector: k is small, and it is allocated once per
+/// track).
 using Window = std::vector<WindowEntry>;
 
 struct MovementDecision {
@@ -74,8 +74,8 @@ class MovementAnalyzer {
 
   /// `window`: the track's observations, oldest first (the last k are used); `cluster`: its
   /// current cluster (same frame as the last entry); `dt`: seconds between frames.
-  MovementDecision analyse(const Window& window, const FrameChain& chain,
-                           const Cluster& cluster, double dt) const;
+  MovementDecision analyse(const Window& window, const FrameChain& chain, const Cluster& cluster,
+                           double dt) const;
 
   const MovementParams& params() const { return p_; }
 

@@ -29,8 +29,10 @@ struct StageParams : public ::mrpt::config::CLoadableOptions {
   virtual void validate() const = 0;
 
   /// Reads every key present in `section` (absent keys keep their value), then validate().
-  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c, const std::string& section) override;
-  void saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& section) const override;
+  void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
+                          const std::string& section) override;
+  void saveToConfigFile(::mrpt::config::CConfigFileBase& c,
+                        const std::string& section) const override;
 };
 
 }  // namespace dynobj::core

@@ -7,7 +7,6 @@
 #pragma once
 
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 #include "dynobj/core/LidarFrame.h"
@@ -16,12 +15,14 @@
 namespace dynobj::core {
 
 struct RegionGrowingParams : public StageParams {
-  double distance = 0.25;     ///< epsilon [m] between neighbouring points of one object
-  double range_factor = 1.2;  ///< epsilon = distance + range_factor x (gap between the rays at that range)
-  double depth_factor = 0.02; ///< and neighbours' ranges differ by at most distance + depth_factor x range
-  double max_extent = 1.5;    ///< [m] no pixel farther than this (horizontally) from the seeds' centre,
-                              ///< or than half the seeds' own extent plus this, if larger
-  int max_pixels = 20000;     ///< safety limit per object
+  double distance = 0.25;  ///< epsilon [m] between neighbouring points of one object
+  double range_factor =
+      1.2;  ///< epsilon = distance + range_factor x (gap between the rays at that range)
+  double depth_factor =
+      0.02;  ///< and neighbours' ranges differ by at most distance + depth_factor x range
+  double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
+                            ///< centre, or than half the seeds' own extent plus this, if larger
+  int max_pixels = 20000;  ///< safety limit per object
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -19,7 +19,8 @@ struct SensorModel : public ::mrpt::config::CLoadableOptions {
   /// Azimuth bins per revolution = image columns W (INI key `cols`).
   int cols = 1024;
   /// [rad; degrees in INI] Elevation of the highest / lowest beam centre for sensors with evenly
-  /// spaced beams (INI keys `elevation_top`, `elevation_bottom`). Ignored if beam_elevations is set.
+  /// spaced beams (INI keys `elevation_top`, `elevation_bottom`). Ignored if beam_elevations is
+  /// set.
   double elevation_top = 45.0 * 3.14159265358979323846 / 180.0;
   double elevation_bottom = -45.0 * 3.14159265358979323846 / 180.0;
   /// [rad; degrees in INI] Optional per-laser elevation table in *laser-id order* (the order of

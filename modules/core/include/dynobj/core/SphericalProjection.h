@@ -19,12 +19,12 @@ namespace dynobj::core {
 
 /// What happened to the input points of one projection.
 struct ProjectionStats {
-  std::size_t input_points = 0;  ///< points in the cloud
-  std::size_t pixels_set = 0;    ///< pixels holding a return afterwards
-  std::size_t hidden = 0;        ///< points behind a nearer point in the same pixel (still mapped)
-  std::size_t outside_fov = 0;   ///< points above/below the vertical field of view
-  std::size_t invalid = 0;       ///< NaN/inf coordinates or a point at the origin (not mapped)
-  std::size_t bad_intensity = 0; ///< non-finite or negative intensity, stored as 0
+  std::size_t input_points = 0;   ///< points in the cloud
+  std::size_t pixels_set = 0;     ///< pixels holding a return afterwards
+  std::size_t hidden = 0;         ///< points behind a nearer point in the same pixel (still mapped)
+  std::size_t outside_fov = 0;    ///< points above/below the vertical field of view
+  std::size_t invalid = 0;        ///< NaN/inf coordinates or a point at the origin (not mapped)
+  std::size_t bad_intensity = 0;  ///< non-finite or negative intensity, stored as 0
   std::string toString() const;
 };
 
@@ -51,8 +51,8 @@ class SphericalProjection {
 
  private:
   SensorModel sensor_;
-  double fov_up_ = 0;    ///< beta_up [rad]
-  double fov_span_ = 0;  ///< beta_fov [rad]
+  double fov_up_ = 0;                    ///< beta_up [rad]
+  double fov_span_ = 0;                  ///< beta_fov [rad]
   std::vector<double> row_upper_edges_;  ///< non-uniform sensors: upper edge of each row
   double lower_edge_ = 0;                ///< non-uniform sensors: lower edge of the last row
 };

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <Eigen/Geometry>
-
 #include <vector>
 
 #include "dynobj/core/Clusterer.h"
@@ -16,13 +15,13 @@
 namespace dynobj::core {
 
 struct TrackingParams : public StageParams {
-  bool prediction = true;          ///< Kalman prediction (false: the paper's Eq. 8 only, no coasting)
-  int max_missed = 5;              ///< frames a track coasts unseen before it is dropped
-  double process_noise = 2.0;      ///< [m/s^2] white acceleration of the constant-velocity model
+  bool prediction = true;      ///< Kalman prediction (false: the paper's Eq. 8 only, no coasting)
+  int max_missed = 5;          ///< frames a track coasts unseen before it is dropped
+  double process_noise = 2.0;  ///< [m/s^2] white acceleration of the constant-velocity model
   double measurement_noise = 0.1;  ///< [m] centroid noise
-  bool hysteresis = true;          ///< confirm / release counters (false: state = this frame's test)
-  int confirm_frames = 2;          ///< consecutive moving decisions to become dynamic
-  int release_frames = 4;          ///< consecutive static decisions to become static again
+  bool hysteresis = true;  ///< confirm / release counters (false: state = this frame's test)
+  int confirm_frames = 2;  ///< consecutive moving decisions to become dynamic
+  int release_frames = 4;  ///< consecutive static decisions to become static again
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -33,10 +32,10 @@ struct Track {
   int age = 0;       ///< frames since the track was born
   int missed = 0;    ///< consecutive frames without a cluster
   int cluster = -1;  ///< index of this frame's cluster, -1 when unseen
-  Window window;  ///< observations (frame, centroid in that frame), at most k + 1
+  Window window;     ///< observations (frame, centroid in that frame), at most k + 1
   Eigen::Vector4d state{0, 0, 0, 0};  ///< x, y, vx, vy in the current frame
   Eigen::Matrix4d cov = Eigen::Matrix4d::Identity();
-  double z = 0;      ///< last observed centroid height
+  double z = 0;  ///< last observed centroid height
   bool dynamic = false;
   int positives = 0, negatives = 0;
   MovementDecision decision;
@@ -55,7 +54,8 @@ class TrackManager {
   /// Predicted centroids, in track order (the "R c + t" of Eq. 8).
   std::vector<Eigen::Vector3d> predicted() const;
   /// Applies the association: `cluster_to_track[m]` = track index or -1 (new track).
-  void update(long frame, const std::vector<Cluster>& clusters, const std::vector<int>& cluster_to_track);
+  void update(long frame, const std::vector<Cluster>& clusters,
+              const std::vector<int>& cluster_to_track);
   /// Sets a seen track's moving state from this frame's decision (with hysteresis).
   void decide(Track& t, const MovementDecision& d);
   void reset();

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Geometry>
-
 #include <cstdint>
 #include <stdexcept>
 #include <string>

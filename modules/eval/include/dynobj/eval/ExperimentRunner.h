@@ -37,9 +37,9 @@ struct RunOptions {
   std::string mode = "intensity";  ///< intensity | gt-ego | drift | mrpt-distance
   core::DetectorParams params;
   DriftParams drift;
-  std::string sensor_label;        ///< empty: every LiDAR observation
-  std::set<int> overlay_sweeps;    ///< sweep indices to draw
-  int min_object_points = 10;      ///< object-level recall: smaller objects are not counted
+  std::string sensor_label;      ///< empty: every LiDAR observation
+  std::set<int> overlay_sweeps;  ///< sweep indices to draw
+  int min_object_points = 10;    ///< object-level recall: smaller objects are not counted
   std::size_t max_frames = std::numeric_limits<std::size_t>::max();
   std::function<void(std::size_t)> progress;  ///< called after each frame (may be empty)
 

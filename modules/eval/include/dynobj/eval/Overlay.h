@@ -5,8 +5,8 @@
 
 #include <dynobj/core/DynamicObjectDetector.h>
 #include <dynobj/core/LidarFrame.h>
-#include <opencv2/core.hpp>
 
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>

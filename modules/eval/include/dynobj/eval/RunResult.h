@@ -4,8 +4,8 @@
 #pragma once
 
 #include <dynobj/core/TimingStats.h>
-#include <opencv2/core.hpp>
 
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,9 +21,9 @@ struct RunResult {
   std::string description;  ///< one line for tables
   std::string sequence;     ///< sequence name
   int rows = 0, cols = 0;
-  double rate_hz = 10;      ///< sensor rate: the real-time budget is 1000 / rate_hz ms
+  double rate_hz = 10;  ///< sensor rate: the real-time budget is 1000 / rate_hz ms
   SequenceMetrics metrics;
-  std::optional<ObjectRecall> objects;  ///< when the instance and object files exist
+  std::optional<ObjectRecall> objects;      ///< when the instance and object files exist
   std::optional<core::TimingStats> timing;  ///< per-stage times (detector runs only)
   std::size_t ego_failed = 0;
   std::vector<std::pair<int, cv::Mat>> overlays;  ///< (sweep index, BGR image)

@@ -36,12 +36,13 @@ struct Distribution {
 
 struct SequenceMetrics {
   std::vector<SweepMetrics> sweeps;
-  core::Confusion total;  ///< summed over every point of every sweep (micro)
+  core::Confusion total;     ///< summed over every point of every sweep (micro)
   bool static_known = true;  ///< every sweep's valid point count was given (tn is meaningful)
 
   /// Appends one sweep: ascending pixel lists; `valid_points` < 0 when unknown (tn then 0).
   void add(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& truth,
-           const std::vector<std::uint32_t>& predicted, std::int64_t valid_points = -1, double ms = -1);
+           const std::vector<std::uint32_t>& predicted, std::int64_t valid_points = -1,
+           double ms = -1);
   /// Share of truly static points flagged dynamic over the sequence (n/a when unknown).
   std::optional<double> staticFlagged() const;
 

@@ -13,7 +13,6 @@
 #include <dynobj/core/LidarFrame.h>
 
 #include <Eigen/Geometry>
-
 #include <optional>
 
 namespace dynobj::mapclean {

@@ -10,7 +10,6 @@
 #include <dynobj/core/LidarFrame.h>
 
 #include <Eigen/Geometry>
-
 #include <cstdint>
 #include <memory>
 #include <string>

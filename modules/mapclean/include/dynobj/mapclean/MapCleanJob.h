@@ -25,8 +25,8 @@
 namespace dynobj::mapclean {
 
 struct MapCleanOptions {
-  std::string input;       ///< .rawlog or a KTH DynamicMap folder
-  std::string out_dir;     ///< created if missing
+  std::string input;               ///< .rawlog or a KTH DynamicMap folder
+  std::string out_dir;             ///< created if missing
   std::string poses = "odometry";  ///< PoseSource spec
   PoseSourceOptions pose_options;
   ScanSourceOptions scan_options;
@@ -36,18 +36,19 @@ struct MapCleanOptions {
   double tolerance = 0.05;   ///< [m] metric: a GT point is kept when a map point is this close
   std::string export_kth;    ///< folder for the KTH export; "" = none
   bool write_simplemap = true;
-  double keyframe_distance = 1.0;              ///< [m] cleaned simplemap keyframes
-  double keyframe_angle = 30.0 * M_PI / 180.0; ///< [rad]
-  double png_resolution = 0.05;                ///< [m/px]
+  double keyframe_distance = 1.0;               ///< [m] cleaned simplemap keyframes
+  double keyframe_angle = 30.0 * M_PI / 180.0;  ///< [rad]
+  double png_resolution = 0.05;                 ///< [m/px]
 };
 
 struct MapCleanSummary {
   std::size_t scans = 0;
   std::size_t points_static = 0, points_dynamic = 0;  ///< scan points sent to each map
   std::size_t map_static = 0, map_dynamic = 0;        ///< map points (voxels)
-  std::size_t voted = 0;  ///< static voxels moved to the dynamic map by the voxel vote
+  std::size_t voted = 0;         ///< static voxels moved to the dynamic map by the voxel vote
   std::size_t seen_through = 0;  ///< static voxels moved by the free-space check
-  std::size_t backfilled = 0, confirmed_tracks = 0, keyframes = 0, exported_frames = 0, exported_points = 0;
+  std::size_t backfilled = 0, confirmed_tracks = 0, keyframes = 0, exported_frames = 0,
+              exported_points = 0;
   std::optional<MapScores> scores;
   std::string poses;  ///< description of the pose source
   double seconds = 0;
@@ -55,7 +56,8 @@ struct MapCleanSummary {
 };
 
 /// stage ("detect", "map", "evaluate"), scans done, total scans (0 when not known yet).
-using MapCleanProgress = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
+using MapCleanProgress =
+    std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
 /// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input.
 MapCleanSummary runMapClean(const MapCleanOptions& opts, const MapCleanProgress& progress = {});

@@ -14,9 +14,8 @@
 #include <dynobj/core/Params.h>
 
 #include <Eigen/Geometry>
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <set>
 #include <vector>
 
@@ -43,10 +42,10 @@ void forEachWorldPoint(const core::LidarFrame& frame, const Eigen::Isometry3d& s
 
 /// INI section [mapclean]; keys = field names.
 struct MapCleanParams : public core::StageParams {
-  double voxel_size = 0.05;   ///< [m] map voxel; 0 = keep every point
-  bool second_pass = true;    ///< mark confirmed tracks' earlier frames (see above)
-  double box_margin = 0.15;   ///< [m] growth of a track's box sideways and upwards (second pass)
-  double min_range = 0.0;     ///< [m] points nearer than this (e.g. the robot itself) are not mapped
+  double voxel_size = 0.05;  ///< [m] map voxel; 0 = keep every point
+  bool second_pass = true;   ///< mark confirmed tracks' earlier frames (see above)
+  double box_margin = 0.15;  ///< [m] growth of a track's box sideways and upwards (second pass)
+  double min_range = 0.0;    ///< [m] points nearer than this (e.g. the robot itself) are not mapped
   /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
   /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
   double dynamic_vote = 1.0;

@@ -17,7 +17,6 @@
 #include <dynobj/core/LidarFrame.h>
 
 #include <Eigen/Geometry>
-
 #include <cstdint>
 #include <memory>
 #include <vector>

@@ -9,10 +9,9 @@
 #pragma once
 
 #include <mrpt/maps/CSimpleMap.h>
-#include <opencv2/core.hpp>
 
 #include <Eigen/Geometry>
-
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 

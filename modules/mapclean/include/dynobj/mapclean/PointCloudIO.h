@@ -5,7 +5,6 @@
 #pragma once
 
 #include <Eigen/Geometry>
-
 #include <cstddef>
 #include <memory>
 #include <stdexcept>

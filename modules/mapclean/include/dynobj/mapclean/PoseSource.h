@@ -15,7 +15,6 @@
 #include <dynobj/core/EgoMotionEstimator.h>
 
 #include <Eigen/Geometry>
-
 #include <memory>
 #include <string>
 
@@ -24,8 +23,8 @@
 namespace dynobj::mapclean {
 
 struct PoseSourceOptions {
-  double tolerance_s = 0.001;   ///< timestamp matching tolerance for TUM / simplemap [s]
-  bool tum_robot_poses = false; ///< TUM poses are robot poses (composed with the mount)
+  double tolerance_s = 0.001;    ///< timestamp matching tolerance for TUM / simplemap [s]
+  bool tum_robot_poses = false;  ///< TUM poses are robot poses (composed with the mount)
 };
 
 class PoseSource {
@@ -38,6 +37,7 @@ class PoseSource {
 };
 
 /// Throws std::runtime_error for an unknown spec / file format, or a file that cannot be read.
-std::unique_ptr<PoseSource> makePoseSource(const std::string& spec, const PoseSourceOptions& opts = {});
+std::unique_ptr<PoseSource> makePoseSource(const std::string& spec,
+                                           const PoseSourceOptions& opts = {});
 
 }  // namespace dynobj::mapclean

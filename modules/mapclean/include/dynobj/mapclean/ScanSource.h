@@ -10,7 +10,6 @@
 #include <mrpt/obs/CObservation.h>
 
 #include <Eigen/Geometry>
-
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -19,9 +18,9 @@
 namespace dynobj::mapclean {
 
 struct Scan {
-  std::size_t index = 0;    ///< LiDAR scan number in the input (0-based)
-  std::string where;        ///< for messages: "entry 12" or "pcd/000012.pcd"
-  core::LidarFrame frame;   ///< sensor frame; frame.timestamp_ns is the scan time
+  std::size_t index = 0;   ///< LiDAR scan number in the input (0-based)
+  std::string where;       ///< for messages: "entry 12" or "pcd/000012.pcd"
+  core::LidarFrame frame;  ///< sensor frame; frame.timestamp_ns is the scan time
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  ///< sensor pose on the robot
   std::optional<Eigen::Isometry3d> odometry;   ///< robot pose of the latest odometry (rawlog)
   std::optional<Eigen::Isometry3d> viewpoint;  ///< sensor pose given by the input (PCD VIEWPOINT)

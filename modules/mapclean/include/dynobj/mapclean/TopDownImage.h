@@ -4,7 +4,6 @@
 #pragma once
 
 #include <opencv2/core.hpp>
-
 #include <string>
 #include <vector>
 
@@ -15,8 +14,8 @@ namespace dynobj::mapclean {
 /// The area drawn and the scale, shared by several images of one map so they overlay exactly.
 struct TopDownView {
   double min_x = 0, min_y = 0, resolution = 0.05;  ///< [m], [m/px]
-  int width = 0, height = 0;                        ///< [px]; +x right, +y up
-  double z_ground = 0, z_span = 2.5;                ///< grey scale: z_ground -> dark, +span -> white
+  int width = 0, height = 0;                       ///< [px]; +x right, +y up
+  double z_ground = 0, z_span = 2.5;               ///< grey scale: z_ground -> dark, +span -> white
 
   /// Fits every point of both sets with a 1 m margin; coarsens the resolution so that no side
   /// exceeds `max_pixels`. z_ground = 2nd percentile of the heights.

@@ -30,13 +30,13 @@ FilterMode parseFilterMode(const std::string& name);
 const char* toString(FilterMode m);
 
 struct FilterSummary {
-  std::size_t observations = 0;     ///< every observation seen
-  std::size_t lidar = 0;            ///< LiDAR observations processed (tagged)
-  std::size_t points = 0;           ///< their points
-  std::size_t dynamic_points = 0;   ///< of which dynamic (flagged, removed or restored)
-  std::size_t passed_through = 0;   ///< LiDAR observations left untouched (see warnings)
+  std::size_t observations = 0;    ///< every observation seen
+  std::size_t lidar = 0;           ///< LiDAR observations processed (tagged)
+  std::size_t points = 0;          ///< their points
+  std::size_t dynamic_points = 0;  ///< of which dynamic (flagged, removed or restored)
+  std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
   std::map<std::string, std::size_t> warnings;  ///< message -> count
-  double detector_ms = 0;           ///< total detector time
+  double detector_ms = 0;                       ///< total detector time
 };
 
 class DynamicObjectFilter {

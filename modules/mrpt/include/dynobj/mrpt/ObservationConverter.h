@@ -39,7 +39,8 @@ class ObservationConverter {
   /// Fills `frame` (resized as needed; its memory is reused across calls). Loads externally
   /// stored data first. Throws ConversionError for an unsupported class or malformed content
   /// (size mismatches, missing geometry, no points, ...).
-  core::ProjectionStats convert(const ::mrpt::obs::CObservation& obs, core::LidarFrame& frame) const;
+  core::ProjectionStats convert(const ::mrpt::obs::CObservation& obs,
+                                core::LidarFrame& frame) const;
 
   const std::optional<core::SensorModel>& sensor() const { return sensor_; }
 

@@ -5,8 +5,8 @@
 
 #include <dynobj/core/LidarFrame.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <opencv2/core.hpp>
 
+#include <opencv2/core.hpp>
 #include <string>
 
 namespace dynobj::mrpt {

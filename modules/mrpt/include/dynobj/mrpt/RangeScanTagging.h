@@ -8,9 +8,9 @@
 #pragma once
 
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <opencv2/core.hpp>
 
 #include <cstddef>
+#include <opencv2/core.hpp>
 
 namespace dynobj::mrpt {
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Streaming rawlog reader that tells a clean end of file from a damaged one. Stock
 // CRawlog::getActionObservationPairOrObservation() returns false for both; this reader throws a
-// RawlogError naming the entry instead, so no tool of ours mistakes a truncated file for a short one.
+// RawlogError naming the entry instead, so no tool of ours mistakes a truncated file for a short
+// one.
 #pragma once
 
 #include <mrpt/io/CFileGZInputStream.h>

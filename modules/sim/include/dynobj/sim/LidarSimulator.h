@@ -6,9 +6,8 @@
 #include <dynobj/core/LidarFrame.h>
 
 #include <Eigen/Geometry>
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "dynobj/sim/Scenario.h"
@@ -26,13 +25,13 @@ struct ActorState {
 
 struct SimulatedSweep {
   int index = 0;
-  double t = 0;                      ///< [s] since the start of the sequence
-  std::int64_t timestamp_ns = 0;     ///< Unix time
-  core::LidarFrame frame;            ///< points in the sensor frame at their firing time
-  cv::Mat_<std::int16_t> actor;      ///< actor id hit by each pixel, -1 = static scene / none
-  cv::Mat_<std::uint8_t> dynamic;    ///< 255 where the pixel hit a moving actor (ground truth)
-  Eigen::Isometry3d robot_pose;      ///< world pose of the robot at t
-  Eigen::Isometry3d sensor_pose;     ///< world pose of the sensor at t
+  double t = 0;                    ///< [s] since the start of the sequence
+  std::int64_t timestamp_ns = 0;   ///< Unix time
+  core::LidarFrame frame;          ///< points in the sensor frame at their firing time
+  cv::Mat_<std::int16_t> actor;    ///< actor id hit by each pixel, -1 = static scene / none
+  cv::Mat_<std::uint8_t> dynamic;  ///< 255 where the pixel hit a moving actor (ground truth)
+  Eigen::Isometry3d robot_pose;    ///< world pose of the robot at t
+  Eigen::Isometry3d sensor_pose;   ///< world pose of the sensor at t
   std::vector<ActorState> actors;
 };
 

@@ -45,21 +45,21 @@ struct Actor {
 struct Scenario {
   std::string name = "scenario";
   std::uint32_t seed = 1;
-  int frames = 300;                 ///< sweeps to simulate
-  double start_time = 1.7e9;        ///< [s, Unix] timestamp of sweep 0
-  core::SensorModel sensor;         ///< from `sensor:` (a preset path under share/dynobj)
+  int frames = 300;           ///< sweeps to simulate
+  double start_time = 1.7e9;  ///< [s, Unix] timestamp of sweep 0
+  core::SensorModel sensor;   ///< from `sensor:` (a preset path under share/dynobj)
   std::string sensor_label = "LIDAR";
-  Eigen::Vector3d mount{0, 0, 0.6}; ///< sensor position on the robot [m]
-  double range_sigma = 0.02;        ///< [m] Gaussian range noise
-  double dropout = 0.003;           ///< random no-return probability
-  double grazing_cos = 0.08;        ///< incidence cosine below which most returns drop
-  double intensity_gain = 700;      ///< signal of a white (reflectivity 1) wall at 10-50 m
-  double intensity_noise = 0.08;    ///< relative signal noise
+  Eigen::Vector3d mount{0, 0, 0.6};   ///< sensor position on the robot [m]
+  double range_sigma = 0.02;          ///< [m] Gaussian range noise
+  double dropout = 0.003;             ///< random no-return probability
+  double grazing_cos = 0.08;          ///< incidence cosine below which most returns drop
+  double intensity_gain = 700;        ///< signal of a white (reflectivity 1) wall at 10-50 m
+  double intensity_noise = 0.08;      ///< relative signal noise
   double intensity_near_range = 1.5;  ///< [m] signal is suppressed below about this range
-  bool motion_distortion = false;   ///< columns fired over the sweep while everything moves
-  double moving_speed = 0.2;        ///< [m/s] an actor faster than this is "dynamic"
-  bool odometry = true;             ///< also write CObservationOdometry
-  double odometry_sigma_xy = 0.01;  ///< [m per sweep]
+  bool motion_distortion = false;     ///< columns fired over the sweep while everything moves
+  double moving_speed = 0.2;          ///< [m/s] an actor faster than this is "dynamic"
+  bool odometry = true;               ///< also write CObservationOdometry
+  double odometry_sigma_xy = 0.01;    ///< [m per sweep]
   double odometry_sigma_yaw = 0.2 * M_PI / 180;  ///< [rad per sweep]
 
   Floor floor;
@@ -71,7 +71,7 @@ struct Scenario {
   double bob_height = 0.0;  ///< [m] amplitude of the vertical bobbing (legged robot)
   double bob_roll = 0.0;    ///< [rad] amplitudes
   double bob_pitch = 0.0;
-  double bob_hz = 2.0;      ///< step frequency
+  double bob_hz = 2.0;  ///< step frequency
 
   double period() const { return 1.0 / sensor.frequency; }
   double duration() const { return frames * period(); }

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Writes a simulated sequence into one folder (docs/formats.md, docs/simulator.md):
-//   <name>.rawlog            observation-only rawlog: [CObservationOdometry] + CObservation3DRangeScan
-//   <name>.gt.labels         dynamic-label file v1 (pixels hit by a moving actor)
-//   <name>.gt.tum            sensor poses, TUM format (timestamp tx ty tz qx qy qz qw, seconds)
-//   <name>.gt.objects.csv    per sweep and actor: id, class, position, velocity, moving, points
+//   <name>.rawlog            observation-only rawlog: [CObservationOdometry] +
+//   CObservation3DRangeScan <name>.gt.labels         dynamic-label file v1 (pixels hit by a moving
+//   actor) <name>.gt.tum            sensor poses, TUM format (timestamp tx ty tz qx qy qz qw,
+//   seconds) <name>.gt.objects.csv    per sweep and actor: id, class, position, velocity, moving,
+//   points
 // Every file is written as <file>.partial and renamed only by close(): a file with the final name
 // is always complete.
 #pragma once

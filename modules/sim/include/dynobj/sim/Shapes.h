@@ -14,9 +14,9 @@ struct Ray {
 
 /// The nearest intersection found so far.
 struct Hit {
-  double t = 0;             ///< distance along the ray [m]
-  Eigen::Vector3d normal;   ///< unit surface normal, facing the ray origin
-  Eigen::Vector2d uv;       ///< surface coordinates [m] for textures
+  double t = 0;            ///< distance along the ray [m]
+  Eigen::Vector3d normal;  ///< unit surface normal, facing the ray origin
+  Eigen::Vector2d uv;      ///< surface coordinates [m] for textures
 };
 
 /// Box rotated by `yaw` about +Z; `half` = half sizes along its own x, y, z.

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <string>
 
@@ -17,7 +16,7 @@ enum class Pattern { Plain, Noise, Stripes, Checker, Posters, Markings };
 Pattern patternFromString(const std::string& name);
 
 struct Material {
-  double albedo = 0.3;     ///< mean reflectivity, 0..1
+  double albedo = 0.3;  ///< mean reflectivity, 0..1
   Pattern pattern = Pattern::Noise;
   double scale = 1.0;      ///< pattern feature size [m]
   double contrast = 0.6;   ///< 0 = flat, 1 = full swing around albedo
