@@ -36,23 +36,24 @@ SequenceMetrics SequenceMetrics::compute(const core::LabelFile& truth,
   if (truth.rows != pred.rows || truth.cols != pred.cols)
     throw EvaluationError("ground truth is " + std::to_string(truth.rows) + "x" +
                           std::to_string(truth.cols) + " but the predictions are " +
-                          std::to_string(pred.rows) + "x" + std::to_string(pred.cols));
+                          std::to_string(pred.rows) + "x" + std::to_string(pred.cols) +
+                          " (header, line 1)");
   SequenceMetrics m;
   const std::size_t n = std::max(truth.sweeps.size(), pred.sweeps.size());
   for (std::size_t k = 0; k < n; k++) {
     if (k >= truth.sweeps.size())
-      throw EvaluationError("prediction sweep " + std::to_string(k) +
-                            " (t = " + std::to_string(pred.sweeps[k].timestamp_ns) +
-                            " ns) has no ground truth");
+      throw EvaluationError(
+          "prediction sweep " + std::to_string(k) + " (line " + std::to_string(k + 2) +
+          ", t = " + std::to_string(pred.sweeps[k].timestamp_ns) + " ns) has no ground truth");
     if (k >= pred.sweeps.size())
-      throw EvaluationError("ground-truth sweep " + std::to_string(k) +
-                            " (t = " + std::to_string(truth.sweeps[k].timestamp_ns) +
-                            " ns) has no prediction");
+      throw EvaluationError(
+          "ground-truth sweep " + std::to_string(k) + " (line " + std::to_string(k + 2) +
+          ", t = " + std::to_string(truth.sweeps[k].timestamp_ns) + " ns) has no prediction");
     const auto& t = truth.sweeps[k];
     const auto& p = pred.sweeps[k];
     if (t.timestamp_ns != p.timestamp_ns)
-      throw EvaluationError("sweep " + std::to_string(k) +
-                            ": ground truth at t = " + std::to_string(t.timestamp_ns) +
+      throw EvaluationError("sweep " + std::to_string(k) + " (line " + std::to_string(k + 2) +
+                            "): ground truth at t = " + std::to_string(t.timestamp_ns) +
                             " ns, prediction at " + std::to_string(p.timestamp_ns) + " ns");
     m.add(t.timestamp_ns, t.pixels, p.pixels);
   }

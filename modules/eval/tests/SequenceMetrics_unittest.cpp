@@ -77,11 +77,11 @@ TEST(SequenceMetrics, MismatchesAreErrorsNamingTheSweep) {
       errorOf(file({{1, {}}}), file({{1, {}}}, 4, 16)).find("4x8 but the predictions are 4x16"),
       std::string::npos);
   EXPECT_NE(errorOf(file({{1, {}}, {2, {}}}), file({{1, {}}}))
-                .find("ground-truth sweep 1 (t = 2 ns) has no prediction"),
+                .find("ground-truth sweep 1 (line 3, t = 2 ns) has no prediction"),
             std::string::npos);
   EXPECT_NE(errorOf(file({{1, {}}}), file({{1, {}}, {2, {}}})).find("prediction sweep 1"),
             std::string::npos);
   EXPECT_NE(errorOf(file({{1, {}}, {2, {}}}), file({{1, {}}, {3, {}}}))
-                .find("sweep 1: ground truth at t = 2 ns, prediction at 3 ns"),
+                .find("sweep 1 (line 3): ground truth at t = 2 ns, prediction at 3 ns"),
             std::string::npos);
 }
