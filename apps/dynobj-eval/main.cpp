@@ -4,6 +4,7 @@
 //   --run <scenario.yaml | sequence dir | file.rawlog>: simulate if needed, run the detector and
 //         the baselines, evaluate, report.
 //   --gt <file.labels> --pred <file.labels>: evaluate existing label files.
+#include <dynobj/core/AtomicFile.h>
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/core/LabelFile.h>
 #include <dynobj/eval/ExperimentRunner.h>
@@ -52,7 +53,7 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
                   const std::vector<eval::RunResult>& runs) {
   const std::string table = eval::markdownTable(runs);
   std::cout << table;
-  eval::writeFileAtomically(dir + "/summary.md", table);
+  core::writeFileAtomically(dir + "/summary.md", table);
   eval::writeJsonSummary(dir + "/summary.json", runs);
   std::vector<std::pair<std::string, cv::Mat>> sheet;
   for (const auto& r : runs) {

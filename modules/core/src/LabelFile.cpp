@@ -83,19 +83,10 @@ std::vector<std::uint32_t> pixelsOfMask(const cv::Mat_<std::uint8_t>& mask) {
 }
 
 LabelFileWriter::LabelFileWriter(const std::string& path, int rows, int cols, bool instances)
-    : path_(path), partial_(path + ".partial"), rows_(rows), cols_(cols), instances_(instances) {
+    : file_(path), rows_(rows), cols_(cols), instances_(instances) {
   if (rows <= 0 || cols <= 0) throw std::invalid_argument("LabelFileWriter: bad image size");
-  out_.open(partial_, std::ios::trunc);
-  if (!out_) throw std::runtime_error("cannot write label file '" + partial_ + "'");
-  out_ << (instances ? "# dynobj-instances v1 rows=" : "# dynobj-labels v1 rows=") << rows
-       << " cols=" << cols << "\n";
-}
-
-LabelFileWriter::~LabelFileWriter() {
-  if (!closed_) {
-    out_.close();
-    std::remove(partial_.c_str());
-  }
+  file_.stream() << (instances ? "# dynobj-instances v1 rows=" : "# dynobj-labels v1 rows=") << rows
+                 << " cols=" << cols << "\n";
 }
 
 void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels,
@@ -106,25 +97,20 @@ void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::ui
     throw std::invalid_argument(
         "LabelFileWriter: an instance file needs one id per pixel, a label file none");
   const auto n = static_cast<std::uint64_t>(rows_) * static_cast<std::uint64_t>(cols_);
-  out_ << timestamp_ns << ' ' << pixels.size();
+  file_.stream() << timestamp_ns << ' ' << pixels.size();
   for (std::size_t i = 0; i < pixels.size(); i++) {
     if (pixels[i] >= n || (i > 0 && pixels[i] <= pixels[i - 1]))
       throw std::invalid_argument("LabelFileWriter: pixels must be ascending and inside the image");
-    out_ << ' ' << pixels[i];
-    if (instances_) out_ << ':' << ids[i];
+    file_.stream() << ' ' << pixels[i];
+    if (instances_) file_.stream() << ':' << ids[i];
   }
-  out_ << '\n';
+  file_.stream() << '\n';
   any_ = true;
   last_ts_ = timestamp_ns;
 }
 
 void LabelFileWriter::close() {
-  out_.flush();
-  if (!out_) throw std::runtime_error("error writing label file '" + partial_ + "'");
-  out_.close();
-  if (std::rename(partial_.c_str(), path_.c_str()) != 0)
-    throw std::runtime_error("cannot rename '" + partial_ + "' to '" + path_ + "'");
-  closed_ = true;
+  file_.commit();
 }
 
 }  // namespace dynobj::core

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/Report.h"
 
+#include <dynobj/core/AtomicFile.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -189,24 +191,6 @@ std::string pngDataUri(const cv::Mat& img) {
 
 }  // namespace
 
-void writeFileAtomically(const std::string& path, const std::string& content) {
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write '" + partial + "'");
-    out << content;
-    out.flush();
-    if (!out) {
-      std::remove(partial.c_str());
-      throw std::runtime_error("error writing '" + partial + "'");
-    }
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    std::remove(partial.c_str());
-    throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "'");
-  }
-}
-
 std::string markdownTable(const std::vector<RunResult>& runs) {
   std::ostringstream s;
   s << "| sequence | method | precision | IoU | recall | F1 | object recall | static flagged | ms "
@@ -232,7 +216,7 @@ void writeSweepCsv(const std::string& path, const RunResult& run) {
       << "," << opt(c.precision(), "") << "," << opt(c.recall(), "") << "," << opt(c.iou(), "")
       << "," << opt(c.f1(), "") << "," << (sw.ms >= 0 ? num(sw.ms, 3) : "") << "\n";
   }
-  writeFileAtomically(path, s.str());
+  core::writeFileAtomically(path, s.str());
 }
 
 void writeJsonSummary(const std::string& path, const std::vector<RunResult>& runs) {
@@ -292,7 +276,7 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
     s << "}";
   }
   s << "\n  ]\n}\n";
-  writeFileAtomically(path, s.str());
+  core::writeFileAtomically(path, s.str());
 }
 
 void writeHtmlReport(const std::string& path, const std::string& title, const std::string& command,
@@ -351,7 +335,7 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
        "document.getElementById('image-check').textContent=(ok==imgs.length?'':'WARNING: ')+ok+' "
        "of '+"
        "imgs.length+' images loaded';});</script>\n</body></html>\n";
-  writeFileAtomically(path, s.str());
+  core::writeFileAtomically(path, s.str());
 }
 
 }  // namespace dynobj::eval

@@ -100,17 +100,6 @@ TEST(Report, MarkdownTablePrintsUndefinedAsNa) {
       << t;
 }
 
-TEST(Report, AtomicWriteLeavesNoPartialAndFailsOnAMissingFolder) {
-  const std::string p = ::mrpt::system::getTempFileName() + ".txt";
-  writeFileAtomically(p, "abc");
-  std::ifstream in(p);
-  std::string s;
-  in >> s;
-  EXPECT_EQ(s, "abc");
-  EXPECT_FALSE(::mrpt::system::fileExists(p + ".partial"));
-  EXPECT_THROW(writeFileAtomically("/nonexistent-dir/x.txt", "abc"), std::runtime_error);
-}
-
 TEST(DriftModel, ParsesKeysAndRejectsUnknownOnes) {
   const DriftParams p =
       DriftParams::parse("sigma_xy=0,sigma_yaw_deg=0,bias_scale=0.1,bias_yaw_deg=1");

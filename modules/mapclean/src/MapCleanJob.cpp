@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/MapCleanJob.h"
 
+#include <dynobj/core/AtomicFile.h>
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/core/LabelFile.h>
 
@@ -10,7 +11,6 @@
 #include <memory>
 #include <stdexcept>
 
-#include "dynobj/mapclean/AtomicFile.h"
 #include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
 #include "dynobj/mapclean/MapVisibilityCheck.h"
@@ -60,7 +60,7 @@ class GroundTruthLabels {
 };
 
 void writeTum(const std::string& path, const std::vector<FrameRecord>& recs) {
-  AtomicFile f(path);
+  core::AtomicFile f(path);
   auto& o = f.stream();
   o << "# timestamp tx ty tz qx qy qz qw  (sensor pose in the world, as mapped by "
        "dynobj-mapclean)\n";
@@ -76,7 +76,8 @@ void writeTum(const std::string& path, const std::vector<FrameRecord>& recs) {
 }
 
 void writePng(const std::string& path, const cv::Mat& img) {
-  const std::string partial = partialName(path) + ".png";  // OpenCV picks the codec by extension
+  const std::string partial =
+      core::partialName(path) + ".png";  // OpenCV picks the codec by extension
   core::writePng(partial, img);
   if (std::rename(partial.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "'");

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/MrptOutputs.h"
 
+#include <dynobj/core/AtomicFile.h>
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <dynobj/mrpt/RangeScanTagging.h>
 #include <dynobj/mrpt/TimeConversion.h>
@@ -15,7 +16,6 @@
 #include <stdexcept>
 
 #include "PoseConversion.h"
-#include "dynobj/mapclean/AtomicFile.h"
 
 namespace dynobj::mapclean {
 
@@ -51,12 +51,12 @@ void CleanedSimplemapWriter::add(const Scan& scan, const cv::Mat_<std::uint8_t>&
 }
 
 void CleanedSimplemapWriter::close() {
-  const std::string partial = partialName(path_);
+  const std::string partial = core::partialName(path_);
   if (!map_.saveToFile(partial)) {
     std::remove(partial.c_str());
     throw std::runtime_error("cannot write simplemap '" + partial + "'");
   }
-  commitPartial(path_);
+  core::commitPartial(path_);
 }
 
 void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& points) {
@@ -70,18 +70,18 @@ void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& p
     const std::string file = base + ".pointsmap";
     {
       ::mrpt::io::CFileGZOutputStream out;
-      if (!out.open(partialName(file)))
-        throw std::runtime_error("cannot write '" + partialName(file) + "'");
+      if (!out.open(core::partialName(file)))
+        throw std::runtime_error("cannot write '" + core::partialName(file) + "'");
       ::mrpt::serialization::archiveFrom(out) << map;
     }
-    commitPartial(file);
+    core::commitPartial(file);
   }
   const std::string txt = base + ".txt";
-  if (!map.saveXYZI_to_text_file(partialName(txt))) {
-    std::remove(partialName(txt).c_str());
-    throw std::runtime_error("cannot write '" + partialName(txt) + "'");
+  if (!map.saveXYZI_to_text_file(core::partialName(txt))) {
+    std::remove(core::partialName(txt).c_str());
+    throw std::runtime_error("cannot write '" + core::partialName(txt) + "'");
   }
-  commitPartial(txt);
+  core::commitPartial(txt);
 }
 
 }  // namespace dynobj::mapclean

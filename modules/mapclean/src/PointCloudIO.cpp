@@ -162,7 +162,7 @@ PcdCloud readPcd(const std::string& path) {
 
 void writePcd(const std::string& path, const std::vector<MapPoint>& points,
               const Eigen::Isometry3d& viewpoint, const std::string& comment) {
-  AtomicFile f(path);
+  core::AtomicFile f(path);
   f.stream() << kFieldsHeader << (comment.empty() ? "" : "# " + comment + "\n") << "WIDTH "
              << points.size() << "\nHEIGHT 1\n"
              << viewpointLine(viewpoint) << "\nPOINTS " << points.size() << "\nDATA binary\n";
@@ -198,7 +198,7 @@ void PcdStreamWriter::close() {
 }
 
 void writePly(const std::string& path, const std::vector<MapPoint>& points) {
-  AtomicFile f(path);
+  core::AtomicFile f(path);
   f.stream() << "ply\nformat binary_little_endian 1.0\ncomment mrpt-dynobj dynobj-mapclean\n"
              << "element vertex " << points.size()
              << "\nproperty float x\nproperty float y\nproperty float z\nproperty float intensity\n"

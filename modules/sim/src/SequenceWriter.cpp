@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/sim/SequenceWriter.h"
 
+#include <dynobj/core/AtomicFile.h>
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <dynobj/mrpt/TimeConversion.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -14,15 +15,6 @@
 
 namespace dynobj::sim {
 namespace {
-
-std::string partial(const std::string& p) {
-  return p + ".partial";
-}
-
-void renameInto(const std::string& path) {
-  if (std::rename(partial(path).c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot rename '" + partial(path) + "' to '" + path + "'");
-}
 
 ::mrpt::poses::CPose2D planar(const Eigen::Isometry3d& T) {
   const Eigen::Matrix3d R = T.linear();
@@ -38,26 +30,23 @@ SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scena
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
   rawlog_ = std::make_unique<::mrpt::io::CFileGZOutputStream>();
-  if (!rawlog_->open(partial(rawlogPath())))
-    throw std::runtime_error("cannot write '" + partial(rawlogPath()) + "'");
+  if (!rawlog_->open(core::partialName(rawlogPath())))
+    throw std::runtime_error("cannot write '" + core::partialName(rawlogPath()) + "'");
   labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
   instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows,
                                                        s_.sensor.cols, true);
-  tum_.open(partial(tumPath()));
-  objects_.open(partial(objectsPath()));
-  if (!tum_ || !objects_) throw std::runtime_error("cannot write into '" + out_dir + "'");
-  tum_ << "# timestamp tx ty tz qx qy qz qw  (sensor '" << s_.sensor_label << "' in the world)\n";
-  objects_ << "sweep,timestamp_ns,id,class,x,y,z,vx,vy,speed,moving,points\n";
+  tum_ = std::make_unique<core::AtomicFile>(tumPath());
+  objects_ = std::make_unique<core::AtomicFile>(objectsPath());
+  tum_->stream() << "# timestamp tx ty tz qx qy qz qw  (sensor '" << s_.sensor_label
+                 << "' in the world)\n";
+  objects_->stream() << "sweep,timestamp_ns,id,class,x,y,z,vx,vy,speed,moving,points\n";
 }
 
 SequenceWriter::~SequenceWriter() {
   if (closed_) return;
   rawlog_.reset();
-  labels_.reset();  // removes its own partial file
-  instances_.reset();
-  tum_.close();
-  objects_.close();
-  for (const auto& p : {rawlogPath(), tumPath(), objectsPath()}) std::remove(partial(p).c_str());
+  std::remove(core::partialName(rawlogPath()).c_str());
+  // the label, instance, TUM and objects writers remove their own partial files
 }
 
 void SequenceWriter::write(const SimulatedSweep& sw) {
@@ -102,15 +91,16 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
 
   const Eigen::Quaterniond q(sw.sensor_pose.linear());
   const Eigen::Vector3d& p = sw.sensor_pose.translation();
-  tum_ << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "." << std::setw(9)
-       << std::setfill('0') << sw.timestamp_ns % 1000000000 << std::setfill(' ')
-       << std::setprecision(6) << " " << p.x() << " " << p.y() << " " << p.z() << " " << q.x()
-       << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+  tum_->stream() << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "."
+                 << std::setw(9) << std::setfill('0') << sw.timestamp_ns % 1000000000
+                 << std::setfill(' ') << std::setprecision(6) << " " << p.x() << " " << p.y() << " "
+                 << p.z() << " " << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
   for (const ActorState& a : sw.actors)
-    objects_ << sw.index << "," << sw.timestamp_ns << "," << a.id << "," << toString(a.cls) << ","
-             << std::setprecision(3) << a.position.x() << "," << a.position.y() << ","
-             << a.position.z() << "," << a.velocity.x() << "," << a.velocity.y() << ","
-             << a.velocity.norm() << "," << (a.moving ? 1 : 0) << "," << a.points << "\n";
+    objects_->stream() << sw.index << "," << sw.timestamp_ns << "," << a.id << ","
+                       << toString(a.cls) << "," << std::setprecision(3) << a.position.x() << ","
+                       << a.position.y() << "," << a.position.z() << "," << a.velocity.x() << ","
+                       << a.velocity.y() << "," << a.velocity.norm() << "," << (a.moving ? 1 : 0)
+                       << "," << a.points << "\n";
 }
 
 void SequenceWriter::close() {
@@ -118,12 +108,9 @@ void SequenceWriter::close() {
   rawlog_.reset();
   labels_->close();
   instances_->close();
-  tum_.close();
-  objects_.close();
-  if (!tum_ || !objects_) throw std::runtime_error("error writing '" + base_ + ".gt.*'");
-  renameInto(rawlogPath());
-  renameInto(tumPath());
-  renameInto(objectsPath());
+  tum_->commit();
+  objects_->commit();
+  core::commitPartial(rawlogPath());
   closed_ = true;
 }
 

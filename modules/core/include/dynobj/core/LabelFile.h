@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "dynobj/core/AtomicFile.h"
+
 namespace dynobj::core {
 
 /// A malformed label file; what() names the file and line.
@@ -47,7 +49,6 @@ class LabelFileWriter {
  public:
   /// `instances`: write the instance variant (write() then takes one id per pixel).
   LabelFileWriter(const std::string& path, int rows, int cols, bool instances = false);
-  ~LabelFileWriter();
   LabelFileWriter(const LabelFileWriter&) = delete;
   LabelFileWriter& operator=(const LabelFileWriter&) = delete;
 
@@ -58,11 +59,9 @@ class LabelFileWriter {
   void close();
 
  private:
-  std::string path_, partial_;
+  AtomicFile file_;
   int rows_, cols_;
   bool instances_;
-  std::ofstream out_;
-  bool closed_ = false;
   bool any_ = false;
   std::int64_t last_ts_ = 0;
 };

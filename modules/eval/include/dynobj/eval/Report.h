@@ -2,7 +2,7 @@
 // Reports of evaluation runs: a Markdown table laid out like the paper's Table I (precision, IoU,
 // recall, F1, plus object recall, static points flagged and ms/frame), a per-sweep CSV, a JSON
 // summary and one self-contained HTML page (tables, per-sweep plots as inline SVG, overlay images
-// as inline PNG). Every file is written as <file>.partial and renamed when complete.
+// as inline PNG). Every file is written through core::AtomicFile (complete or absent).
 #pragma once
 
 #include <ostream>
@@ -25,8 +25,5 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
 /// The HTML report; `command` is printed on it (how to regenerate).
 void writeHtmlReport(const std::string& path, const std::string& title, const std::string& command,
                      const std::vector<RunResult>& runs);
-
-/// Writes `content` to `path` through `path`.partial; throws std::runtime_error naming the file.
-void writeFileAtomically(const std::string& path, const std::string& content);
 
 }  // namespace dynobj::eval

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Point-cloud files, without MRPT: PCD v0.7 (the KTH DynamicMap benchmark's format: fields
 // x y z intensity, VIEWPOINT = sensor pose as "tx ty tz qw qx qy qz") and binary PLY.
-// Every writer is atomic (AtomicFile): a file with the final name is complete.
+// Every writer is atomic (core::AtomicFile): a file with the final name is complete.
 #pragma once
+
+#include <dynobj/core/AtomicFile.h>
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -11,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "dynobj/mapclean/AtomicFile.h"
 #include "dynobj/mapclean/VoxelMap.h"
 
 namespace dynobj::mapclean {
@@ -51,7 +52,7 @@ class PcdStreamWriter {
   void close();
 
  private:
-  AtomicFile file_;
+  core::AtomicFile file_;
   std::streampos width_pos_, points_pos_;
   std::size_t count_ = 0;
 };

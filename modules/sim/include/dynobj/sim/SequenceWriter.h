@@ -9,6 +9,7 @@
 // is always complete.
 #pragma once
 
+#include <dynobj/core/AtomicFile.h>
 #include <dynobj/core/LabelFile.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/poses/CPose2D.h>
@@ -47,7 +48,7 @@ class SequenceWriter {
   std::string base_;
   std::unique_ptr<::mrpt::io::CFileGZOutputStream> rawlog_;
   std::unique_ptr<core::LabelFileWriter> labels_, instances_;
-  std::ofstream tum_, objects_;
+  std::unique_ptr<core::AtomicFile> tum_, objects_;
   bool closed_ = false;
   std::mt19937 odo_rng_;
   ::mrpt::poses::CPose2D odometry_;

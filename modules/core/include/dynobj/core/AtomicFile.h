@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Output files that are either complete or absent: everything is written to "<path>.partial" and
 // renamed to <path> only by commit(); an uncommitted file (an error, an exception) is removed.
+// Every writer of the project goes through it (label files, simulator output, reports, maps).
 #pragma once
 
 #include <fstream>
 #include <string>
 
-namespace dynobj::mapclean {
+namespace dynobj::core {
 
 class AtomicFile {
  public:
@@ -32,5 +33,7 @@ class AtomicFile {
 void commitPartial(const std::string& path);
 /// "<path>.partial".
 std::string partialName(const std::string& path);
+/// Writes `content` through an AtomicFile in one go.
+void writeFileAtomically(const std::string& path, const std::string& content);
 
-}  // namespace dynobj::mapclean
+}  // namespace dynobj::core

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mapclean/AtomicFile.h"
+#include "dynobj/core/AtomicFile.h"
 
 #include <cstdio>
 #include <stdexcept>
 
-namespace dynobj::mapclean {
+namespace dynobj::core {
 
 std::string partialName(const std::string& path) {
   return path + ".partial";
@@ -27,6 +27,12 @@ AtomicFile::~AtomicFile() {
   std::remove(partial_.c_str());
 }
 
+void writeFileAtomically(const std::string& path, const std::string& content) {
+  AtomicFile f(path);
+  f.stream() << content;
+  f.commit();
+}
+
 void AtomicFile::commit() {
   out_.flush();
   out_.close();
@@ -35,4 +41,4 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-}  // namespace dynobj::mapclean
+}  // namespace dynobj::core
