@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 using detail::toIsometry;
 
-class RawlogScans : public ScanSource {
+class RawlogScans final : public ScanSource {
  public:
   RawlogScans(std::string path, const ScanSourceOptions& o)
       : path_(std::move(path)), opts_(o), converter_(o.sensor) {
@@ -84,7 +84,7 @@ class RawlogScans : public ScanSource {
   std::string first_label_;
 };
 
-class PcdFolderScans : public ScanSource {
+class PcdFolderScans final : public ScanSource {
  public:
   PcdFolderScans(const std::string& dir, const ScanSourceOptions& o) : dir_(dir) {
     if (!o.sensor)
