@@ -304,7 +304,7 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
       << "</td></tr>\n";
   }
   s << "</table>\n<p>Paper (Du &amp; Beltrame, Table I, four real sequences): precision "
-       "0.871–0.906, IoU "
+       "0.871–0.911, IoU "
        "0.842–0.876, recall 0.883–0.899, F1 0.875–0.888.</p>\n<p class='legend'>Overlays: <span "
        "style='background:#f00;color:#fff'>true positive</span><span style='background:#ff0'>false "
        "positive</span><span style='background:#00f;color:#fff'>missed</span> numbers = track "
