@@ -321,7 +321,16 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
       s << "; " << name << " per sweep median " << opt(d.median) << " [" << opt(d.q1) << ", "
         << opt(d.q3) << "] over " << d.sweeps << " sweeps";
     }
-    s << "</p>\n" << metricsPlot(r) << "\n";
+    s << "</p>\n";
+    if (r.objects && !r.objects->byClass().empty()) {
+      s << "<p>Object recall by class (objects with at least " << r.objects->minPoints()
+        << " points in a sweep; detected / present object-sweeps):";
+      for (const auto& [cls, t] : r.objects->byClass())
+        s << " " << escapeHtml(cls) << " " << opt(t.recall()) << " (" << t.detected << "/"
+          << t.present << ");";
+      s << "</p>\n";
+    }
+    s << metricsPlot(r) << "\n";
     if (r.timing) s << timingPlot(r) << "\n";
     for (const auto& [sweep, img] : r.overlays)
       s << "<figure><img alt='sweep " << sweep << "' src='" << pngDataUri(img)
