@@ -7,6 +7,7 @@
 #include <dynobj/core/Metrics.h>
 #include <dynobj/core/TimingStats.h>
 #include <dynobj/core/TumFile.h>
+#include <dynobj/eval/EgoMotionCheck.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -45,6 +46,10 @@ int run(int argc, char** argv) {
       false, "", "file.tum", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
                                       "file.ini", cmd);
+  TCLAP::SwitchArg check_ego("", "check-ego",
+                            "Also register consecutive frames with MRPT's 3D ICP and print how "
+                            "often the ego-motion agrees with it (no ground truth needed)",
+                            cmd);
   TCLAP::ValueArg<std::string> sensor(
       "", "sensor", "Sensor preset INI (point clouds, rotating scans)", false, "", "file.ini", cmd);
   TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "",
@@ -72,6 +77,8 @@ int run(int argc, char** argv) {
       in.getValue(), dynobj::mrpt::ObservationConverter(model),
       {label.getValue(), 0, std::numeric_limits<std::size_t>::max()});
   dynobj::core::DynamicObjectDetector detector(params);
+  std::optional<dynobj::eval::EgoMotionCheck> ego_check;
+  if (check_ego.isSet()) ego_check.emplace();
   std::unique_ptr<dynobj::core::LabelFileWriter> writer;
   dynobj::mrpt::LidarObservationStream::Item item;
   dynobj::core::Confusion total, seeds_total;
@@ -96,6 +103,7 @@ int run(int argc, char** argv) {
     const StageTimings& t = r.timings;
     timing.add(t);
     if (!r.ego_motion.ok && frames > 0) ego_failed++;
+    if (ego_check) ego_check->add(f, r.ego_motion);
     dynobj::core::Confusion c;
     if (truth) {
       if (frames >= truth->sweeps.size() || truth->sweeps[frames].timestamp_ns != f.timestamp_ns)
@@ -156,6 +164,7 @@ int run(int argc, char** argv) {
   std::fflush(stdout);
   timing.print(std::cout);
   std::cout.flush();
+  if (ego_check) std::printf("  ICP check: %s\n", ego_check->summary().toString().c_str());
   if (truth)
     std::printf(
         "  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged "

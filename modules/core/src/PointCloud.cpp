@@ -23,6 +23,7 @@ void PointCloud::clear() {
   intensity.clear();
   row.clear();
   col.clear();
+  ring.clear();
 }
 
 void PointCloud::reserve(std::size_t n, bool with_intensity, bool organized) {
@@ -61,6 +62,7 @@ void PointCloud::validate() const {
   checkSize(intensity, n, "intensity", true);
   checkSize(row, n, "row", true);
   checkSize(col, n, "col", true);
+  checkSize(ring, n, "ring", true);
   if (row.empty() != col.empty())
     throw std::invalid_argument("PointCloud: 'row' and 'col' must be both set or both empty");
 }

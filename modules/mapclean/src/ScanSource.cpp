@@ -2,6 +2,8 @@
 #include "dynobj/mapclean/ScanSource.h"
 
 #include <dynobj/core/SphericalProjection.h>
+#include <dynobj/io/CloudFolder.h>
+#include <dynobj/io/PcdFile.h>
 #include <dynobj/mrpt/ObservationConverter.h>
 #include <dynobj/mrpt/RawlogReader.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -13,7 +15,6 @@
 #include <vector>
 
 #include "PoseConversion.h"
-#include "dynobj/mapclean/PointCloudIO.h"
 
 namespace dynobj::mapclean {
 namespace {
@@ -86,33 +87,24 @@ class RawlogScans final : public ScanSource {
 
 class PcdFolderScans final : public ScanSource {
  public:
-  PcdFolderScans(const std::string& dir, const ScanSourceOptions& o) : dir_(dir) {
-    if (!o.sensor)
-      throw std::runtime_error("'" + dir +
-                               "' is a PCD folder: give the sensor model (--sensor) to "
-                               "arrange its points into LiDAR frames");
+  PcdFolderScans(const std::string& dir, const ScanSourceOptions& o)
+      : dir_(dir), folder_(checkedFolder(dir, o)) {
     projection_ = std::make_unique<core::SphericalProjection>(*o.sensor);
-    for (const auto& e : fs::directory_iterator(fs::path(dir) / "pcd"))
-      if (e.path().extension() == ".pcd") files_.push_back(e.path().string());
-    std::sort(files_.begin(), files_.end());
-    if (files_.empty()) throw std::runtime_error("'" + dir + "/pcd' holds no .pcd file");
   }
   void rewind() override { pos_ = 0; }
   std::string describe() const override { return "PCD folder '" + dir_ + "'"; }
 
   bool next(Scan& s) override {
-    if (pos_ >= files_.size()) return false;
-    const std::string& file = files_[pos_];
-    const PcdCloud pcd = readPcd(file);
+    if (pos_ >= folder_.size()) return false;
+    const std::string& file = folder_.path(pos_);
+    io::CloudFile pcd = io::readPcd(file);
+    core::PointCloud& cloud = pcd.cloud;  // points in the world: back into the sensor frame
     const Eigen::Isometry3f to_sensor = pcd.viewpoint.inverse().cast<float>();
-    core::PointCloud cloud;
-    cloud.reserve(pcd.points.size(), pcd.has_intensity, false);
-    for (const MapPoint& p : pcd.points) {
-      const Eigen::Vector3f q = to_sensor * Eigen::Vector3f(p.x, p.y, p.z);
-      if (pcd.has_intensity)
-        cloud.push_back(q.x(), q.y(), q.z(), p.intensity);
-      else
-        cloud.push_back(q.x(), q.y(), q.z());
+    for (std::size_t i = 0; i < cloud.size(); i++) {
+      const Eigen::Vector3f q = to_sensor * Eigen::Vector3f(cloud.x[i], cloud.y[i], cloud.z[i]);
+      cloud.x[i] = q.x();
+      cloud.y[i] = q.y();
+      cloud.z[i] = q.z();
     }
     projection_->project(cloud, s.frame);
     s.frame.timestamp_ns = timestampOf(pcd);
@@ -126,8 +118,20 @@ class PcdFolderScans final : public ScanSource {
   }
 
  private:
+  static io::CloudFolder checkedFolder(const std::string& dir, const ScanSourceOptions& o) {
+    if (!o.sensor)
+      throw std::runtime_error("'" + dir +
+                               "' is a PCD folder: give the sensor model (--sensor) to "
+                               "arrange its points into LiDAR frames");
+    const std::string pcd_dir = (fs::path(dir) / "pcd").string();
+    io::CloudFolder folder(pcd_dir);  // FormatError when it holds no sweep
+    if (folder.extension() != ".pcd")
+      throw std::runtime_error("'" + pcd_dir + "' holds no .pcd file");
+    return folder;
+  }
+
   /// dynobj's exports carry "# timestamp_ns <t>"; others get index / frequency.
-  std::int64_t timestampOf(const PcdCloud& pcd) const {
+  std::int64_t timestampOf(const io::CloudFile& pcd) const {
     for (const std::string& c : pcd.comments)
       if (c.rfind("timestamp_ns ", 0) == 0) return std::stoll(c.substr(13));
     return static_cast<std::int64_t>(1e9 * static_cast<double>(pos_) /
@@ -135,8 +139,8 @@ class PcdFolderScans final : public ScanSource {
   }
 
   std::string dir_;
+  io::CloudFolder folder_;
   std::unique_ptr<core::SphericalProjection> projection_;
-  std::vector<std::string> files_;
   std::size_t pos_ = 0;
 };
 

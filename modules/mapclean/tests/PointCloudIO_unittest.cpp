@@ -112,7 +112,7 @@ TEST(PointCloudIO, MalformedPcdErrorsNameTheFile) {
   const std::string head =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n";
   expectError(head + "DATA binary\n" + std::string(12, '\0'), "truncated");
-  expectError(head + "DATA binary_compressed\n", "unsupported DATA");
+  expectError(head + "DATA binary_packed\n", "unsupported DATA");  // binary_compressed is read
   expectError("FIELDS x y\nSIZE 4 4\nTYPE F F\nPOINTS 0\nDATA ascii\n", "no field 'z'");
   expectError("hello world\n", "not a PCD header line");
   expectError(head, "no DATA line");

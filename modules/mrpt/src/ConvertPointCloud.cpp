@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// CObservationPointCloud: any CPointsMap (points in the sensor frame), projected with Eq. (1).
+// CObservationPointCloud: any CPointsMap (points in the sensor frame). Rows are recovered from
+// the data (core::RowRecovery: firing order, else the elevation histogram, else the sensor
+// model's table), columns by Eq. (1).
+#include <dynobj/core/RowRecovery.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
@@ -8,11 +11,9 @@
 namespace dynobj::mrpt::detail {
 
 core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointCloud& o,
-                                        const OptSensor& sensor, core::LidarFrame& frame) {
-  if (!sensor)
-    fail(o,
-         "needs a sensor model (rows, cols, vertical field of view) to be projected with "
-         "Eq. (1); pass one, e.g. share/dynobj/sensors/os0-64.ini");
+                                        const OptSensor& sensor,
+                                        std::map<std::string, core::SensorModel>& learned,
+                                        core::LidarFrame& frame) {
   if (!o.pointcloud) fail(o, "has no point cloud (pointcloud is null)");
   const auto& pc = *o.pointcloud;
   const auto& xs = pc.getPointsBufferRef_x();
@@ -28,7 +29,18 @@ core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointClou
     const auto& inten = xyzi->getPointsBufferRef_intensity();
     if (inten.size() == xs.size()) cloud.intensity.assign(inten.begin(), inten.end());
   }
-  return organizeOrFail(o, *sensor, cloud, frame);
+  const auto known = learned.find(o.sensorLabel);
+  const OptSensor hint = sensor || known == learned.end() ? sensor : OptSensor(known->second);
+  try {
+    core::RowSource source = core::RowSource::NominalTable;
+    const core::ProjectionStats st = core::projectUnordered(cloud, hint, frame, &source);
+    if (!hint && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
+      learned.emplace(o.sensorLabel, frame.sensor);
+    return st;
+  } catch (const std::invalid_argument& e) {
+    fail(o, std::string(e.what()) +
+                (sensor ? "" : "; pass one, e.g. share/dynobj/sensors/hdl-64.ini"));
+  }
 }
 
 }  // namespace dynobj::mrpt::detail

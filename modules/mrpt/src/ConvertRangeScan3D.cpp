@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // CObservation3DRangeScan in the organized LiDAR layout of docs/formats.md.
+#include <dynobj/core/RowRecovery.h>
 #include <dynobj/core/SphericalProjection.h>
+
+#include <algorithm>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <cmath>
@@ -50,21 +53,50 @@ cv::Mat_<float> intensityOf(const CObservation3DRangeScan& o, int h, int w) {
   return out;
 }
 
-/// A sensor model for a scan that carries no elevation table: rows/cols from its images, beam
-/// elevations fitted (least squares, elevation = a + b * row) to its points.
-core::SensorModel derivedModel(const CObservation3DRangeScan& o, int h, int w) {
+/// Fills the NaN entries of a per-row table by linear interpolation between the nearest measured
+/// rows (extrapolated at the ends); false when fewer than two rows were measured or the result
+/// does not descend strictly from row to row.
+bool completeTable(std::vector<double>& t) {
+  std::vector<std::size_t> known;
+  for (std::size_t r = 0; r < t.size(); r++)
+    if (!std::isnan(t[r])) known.push_back(r);
+  if (known.size() < 2) return false;
+  for (std::size_t r = 0; r < t.size(); r++) {
+    if (!std::isnan(t[r])) continue;
+    auto hi = std::lower_bound(known.begin(), known.end(), r);
+    if (hi == known.end()) hi--;
+    if (hi == known.begin()) hi++;
+    const std::size_t a = *(hi - 1), b = *hi;
+    t[r] = t[a] + (t[b] - t[a]) * (static_cast<double>(r) - static_cast<double>(a)) /
+                      static_cast<double>(b - a);
+  }
+  for (std::size_t r = 1; r < t.size(); r++)
+    if (!(t[r] < t[r - 1])) return false;
+  return true;
+}
+
+/// A sensor model for a scan that carries no elevation table: rows/cols from its images, the
+/// beam table measured from its points (core::measuredElevations, per row); a least-squares line
+/// (elevation = a + b * row) when the rows do not descend.
+core::SensorModel derivedModel(const CObservation3DRangeScan& o, const core::PointCloud& cloud,
+                               int h, int w) {
   core::SensorModel m;
   m.model = "CObservation3DRangeScan";
   m.rows = h;
   m.cols = w;
   m.max_range = o.maxRange > 1.0f ? static_cast<double>(o.maxRange) : 100.0;
   m.min_range = std::min(0.1, m.max_range / 2);
+  std::vector<double> table = core::measuredElevations(cloud, cloud.row, h);
+  if (h > 1 && completeTable(table)) {
+    m.beam_elevations = std::move(table);
+    return m;
+  }
   double s1 = 0, sr = 0, se = 0, srr = 0, sre = 0;
-  for (std::size_t i = 0; i < o.points3D_x.size() && i < o.points3D_idxs_y.size(); i++) {
-    const double x = o.points3D_x[i], y = o.points3D_y[i], z = o.points3D_z[i];
+  for (std::size_t i = 0; i < cloud.size(); i++) {
+    const double x = cloud.x[i], y = cloud.y[i], z = cloud.z[i];
     const double r = std::sqrt(x * x + y * y + z * z);
     if (!(r > 0) || !std::isfinite(r)) continue;
-    const double row = o.points3D_idxs_y[i], el = std::asin(z / r);
+    const double row = cloud.row[i], el = std::asin(z / r);
     s1 += 1;
     sr += row;
     se += el;
@@ -124,7 +156,7 @@ core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const
       cloud.push_back(x, y, z, inten.empty() ? 0.0f : inten(r, c), r, c);
     }
     if (inten.empty()) cloud.intensity.clear();
-    return organizeOrFail(o, sensor ? *sensor : derivedModel(o, h, w), cloud, frame);
+    return organizeOrFail(o, sensor ? *sensor : derivedModel(o, cloud, h, w), cloud, frame);
   }
 
   if (!o.hasRangeImage) fail(o, "has no points3D and no range image");

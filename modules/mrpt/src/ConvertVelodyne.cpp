@@ -2,6 +2,7 @@
 // CObservationVelodyneScan: laser_id -> row (through the scan's own calibration), azimuth of the
 // point -> column by Eq. (1). Uses point_cloud when present (that is what map insertion uses),
 // otherwise generates it with MRPT's default parameters, exactly as CPointsMap insertion does.
+#include <dynobj/core/RowRecovery.h>
 #include <dynobj/core/SphericalProjection.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 
@@ -14,33 +15,6 @@ namespace dynobj::mrpt::detail {
 namespace {
 
 using ::mrpt::obs::CObservationVelodyneScan;
-
-/// Column count when no sensor model is given: one column per firing, from the azimuth step of
-/// the best-covered laser (MRPT 2.5.8 decodes only the first of the two firings in each VLP-16
-/// block, so its VLP-16 clouds have 0.4 deg steps -> 900 columns at 10 Hz, not the sensor's 1800).
-/// Falls back to the shipped presets' 10 Hz values when a laser has too few points.
-int estimateColumns(const core::PointCloud& cloud, const std::vector<std::uint16_t>& laser,
-                    int lasers) {
-  const int fallback = lasers <= 16 ? 1800 : 2048;
-  std::vector<std::size_t> count(static_cast<std::size_t>(lasers) + 1, 0);
-  for (auto l : laser) count[std::min<std::size_t>(l, count.size() - 1)]++;
-  const auto best =
-      static_cast<std::uint16_t>(std::max_element(count.begin(), count.end() - 1) - count.begin());
-  if (count[best] < 64) return fallback;
-  std::vector<double> az;
-  az.reserve(count[best]);
-  for (std::size_t i = 0; i < cloud.size(); i++)
-    if (laser[i] == best) az.push_back(std::atan2(cloud.y[i], cloud.x[i]));
-  std::sort(az.begin(), az.end());
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < az.size(); i++)
-    if (az[i] - az[i - 1] > 1e-5) steps.push_back(az[i] - az[i - 1]);
-  if (steps.size() < 32) return fallback;
-  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
-                   steps.end());
-  const double cols = std::round(2.0 * M_PI / steps[steps.size() / 2]);
-  return static_cast<int>(std::clamp(cols, 64.0, 16384.0));
-}
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnon-virtual-dtor"  // MRPT's wrapper base has no virtual dtor
@@ -108,7 +82,9 @@ core::ProjectionStats convertVelodyne(const CObservationVelodyneScan& o, const O
     const_cast<CObservationVelodyneScan&>(o).generatePointCloud(sink);
   }
 
-  if (!sensor) model.cols = estimateColumns(cloud, laser, model.rows);
+  // MRPT 2.5.8 decodes only the first of the two firings in each VLP-16 block, so its VLP-16
+  // clouds have 0.4 deg steps: 900 columns at 10 Hz, not the sensor's 1800.
+  if (!sensor) model.cols = core::estimateColumns(cloud, laser, model.rows);
   const auto laser_to_row = model.laserToRow();
   const core::SphericalProjection eq1(model);
   cloud.row.resize(cloud.size());

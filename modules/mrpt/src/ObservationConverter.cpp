@@ -62,7 +62,7 @@ core::ProjectionStats ObservationConverter::convert(const mobs::CObservation& ob
                                  frame);
   else if (dynobj_rtti::isClass<mobs::CObservationPointCloud>(obs))
     st = detail::convertPointCloud(dynamic_cast<const mobs::CObservationPointCloud&>(obs), sensor_,
-                                   frame);
+                                   learned_, frame);
   else if (dynobj_rtti::isClass<mobs::CObservationRotatingScan>(obs))
     st = detail::convertRotatingScan(dynamic_cast<const mobs::CObservationRotatingScan&>(obs),
                                      sensor_, frame);

@@ -7,6 +7,7 @@
 #include <dynobj/core/SphericalProjection.h>
 #include <mrpt/obs/CObservation.h>
 
+#include <map>
 #include <optional>
 #include <string>
 
@@ -42,8 +43,12 @@ core::ProjectionStats convertRangeScan3D(const ::mrpt::obs::CObservation3DRangeS
                                          const OptSensor& sensor, core::LidarFrame& frame);
 core::ProjectionStats convertVelodyne(const ::mrpt::obs::CObservationVelodyneScan& o,
                                       const OptSensor& sensor, core::LidarFrame& frame);
+/// `learned`: per sensor label, the rows recovered from its first complete cloud (used as the
+/// hint when `sensor` is not given; filled here).
 core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointCloud& o,
-                                        const OptSensor& sensor, core::LidarFrame& frame);
+                                        const OptSensor& sensor,
+                                        std::map<std::string, core::SensorModel>& learned,
+                                        core::LidarFrame& frame);
 core::ProjectionStats convertRotatingScan(const ::mrpt::obs::CObservationRotatingScan& o,
                                           const OptSensor& sensor, core::LidarFrame& frame);
 

@@ -17,11 +17,16 @@ struct PointCloud {
   /// Image row (beam, 0 = highest) and column (azimuth bin) of each point, for sensors that
   /// already give them. Both empty = unorganized (use SphericalProjection::project).
   std::vector<std::uint16_t> row, col;
+  /// Laser id of each point in the sensor's own numbering (a PCD `ring` field, a Velodyne
+  /// laser_id), for unorganized clouds. Empty = unknown. Rows are recovered from it by
+  /// RowRecovery (the id order need not be the elevation order).
+  std::vector<std::uint16_t> ring;
 
   std::size_t size() const { return x.size(); }
   bool empty() const { return x.empty(); }
   bool hasIntensity() const { return !intensity.empty(); }
   bool isOrganized() const { return !row.empty(); }
+  bool hasRing() const { return !ring.empty(); }
 
   void clear();
   void reserve(std::size_t n, bool with_intensity, bool organized);

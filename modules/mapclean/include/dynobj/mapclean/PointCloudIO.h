@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Point-cloud files, without MRPT: PCD v0.7 (the KTH DynamicMap benchmark's format: fields
-// x y z intensity, VIEWPOINT = sensor pose as "tx ty tz qw qx qy qz") and binary PLY.
+// Point-cloud files of the map cleaner, in MapPoint form: PCD v0.7 (the KTH DynamicMap
+// benchmark's format: fields x y z intensity, VIEWPOINT = sensor pose as "tx ty tz qw qx qy qz")
+// and binary PLY. The PCD reading and writing itself is dynobj::io's (PcdFile.h); these adapt it.
 // Every writer is atomic (core::AtomicFile): a file with the final name is complete.
 #pragma once
 
 #include <dynobj/core/AtomicFile.h>
+#include <dynobj/io/FormatError.h>
+#include <dynobj/io/PcdFile.h>
 
 #include <Eigen/Geometry>
 #include <cstddef>
-#include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,20 +19,18 @@
 namespace dynobj::mapclean {
 
 /// A malformed or unsupported point-cloud file; what() = "<path>: <problem>" (or "<path>:<line>:").
-class PointCloudFileError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using PointCloudFileError = io::FormatError;
 
 struct PcdCloud {
   std::vector<MapPoint> points;
   Eigen::Isometry3d viewpoint = Eigen::Isometry3d::Identity();  ///< VIEWPOINT (sensor pose)
   bool has_intensity = false;
-  std::vector<std::string> comments;  ///< header comment lines after the first, without '#'
+  std::vector<std::string> comments;  ///< header comments but the ".PCD" banner, without '#'
 };
 
-/// Reads a PCD file (DATA ascii or binary; binary_compressed is refused). Needs fields x, y, z;
-/// reads `intensity` when present; skips other fields. Throws PointCloudFileError.
+/// Reads a PCD file through io::readPcd (every DATA layout; needs fields x, y, z; intensity from
+/// `intensity`, `i` or `reflectivity` when present; NaN points dropped). Throws
+/// PointCloudFileError.
 PcdCloud readPcd(const std::string& path);
 
 /// Writes a binary PCD (fields x y z intensity, float) atomically.
@@ -48,13 +47,11 @@ class PcdStreamWriter {
   explicit PcdStreamWriter(const std::string& path,
                            const Eigen::Isometry3d& viewpoint = Eigen::Isometry3d::Identity());
   void add(const MapPoint& p);
-  std::size_t count() const { return count_; }
+  std::size_t count() const { return writer_.count(); }
   void close();
 
  private:
-  core::AtomicFile file_;
-  std::streampos width_pos_, points_pos_;
-  std::size_t count_ = 0;
+  io::PcdWriter writer_;
 };
 
 /// Writes a binary little-endian PLY (vertex x y z intensity, float) atomically.

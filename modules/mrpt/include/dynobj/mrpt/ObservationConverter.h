@@ -11,6 +11,7 @@
 #include <dynobj/core/SphericalProjection.h>
 #include <mrpt/obs/CObservation.h>
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,10 @@ class ObservationConverter {
 
  private:
   std::optional<core::SensorModel> sensor_;
+  /// Without a sensor model: the rows recovered from the first complete point cloud of each
+  /// sensor label, the hint for its later ones (so a partial sweep keeps the sensor's rows).
+  /// Not shared between threads: give each thread its own converter.
+  mutable std::map<std::string, core::SensorModel> learned_;
 };
 
 }  // namespace dynobj::mrpt

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Image rows for an *unordered* cloud that fit the real sensor (docs/formats.md, "Row recovery").
+// A nominal, evenly spaced or datasheet beam table rarely matches a real unit (HDL-64 lasers sit
+// at uneven, unit-specific elevations and have vertical offsets), and Eq. (1) with such a table
+// gives striped images: empty rows and rows holding two beams. The rows are recovered instead, by
+// the first rule that applies:
+//  1. ring field    — the cloud carries a laser id per point (PCD `ring`, Velodyne laser_id);
+//                     rows = laser ids ordered by their median elevation;
+//  2. firing order  — the cloud is stored laser by laser, each laser one revolution (how KITTI
+//                     and most HDL recorders store a sweep): a new row starts each time the
+//                     azimuth has turned a full revolution since the sweep's first point;
+//  3. estimated table — the elevation histogram of the sweep's far points has one peak per beam;
+//  4. nominal table — the sensor model as given (the last resort).
+// Rules 1-3 return a sensor model whose beam table is the measured elevation of each row.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/PointCloud.h"
+#include "dynobj/core/SensorModel.h"
+#include "dynobj/core/SphericalProjection.h"
+
+namespace dynobj::core {
+
+enum class RowSource { RingField, FiringOrder, EstimatedTable, NominalTable };
+const char* toString(RowSource s);
+
+struct RecoveredRows {
+  RowSource source = RowSource::NominalTable;
+  SensorModel sensor;  ///< the rows found (beam_elevations = measured elevation per row)
+};
+
+/// Recovers the rows of `cloud` (see the file comment). `hint` gives what is known of the sensor:
+/// its rows (a recovered row count must equal it), columns, range limits and rate; without a
+/// hint the row count comes from the data and the columns from the azimuth step. Fills
+/// cloud.row / cloud.col for rules 1-2 (the cloud becomes organized); leaves them empty for
+/// rules 3-4 (project with Eq. (1) and the returned model). Throws std::invalid_argument when no
+/// rule applies and there is no hint.
+RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint);
+
+/// recoverRows(), then organize() or project() into `frame`. `source` (optional) receives the rule.
+ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorModel>& hint,
+                                 LidarFrame& frame, RowSource* source = nullptr);
+
+/// Measured elevation [rad] of each group of points (group[i] < groups, e.g. a row or a laser
+/// id): the median over the group's far points (>= 15 m horizontally, where a laser's vertical
+/// offset no longer tilts them) when it has enough, else over all its points; NaN when empty.
+std::vector<double> measuredElevations(const PointCloud& cloud,
+                                       const std::vector<std::uint16_t>& group, int groups);
+
+/// Azimuth bins per revolution estimated from the data: one per firing, from the median azimuth
+/// step of the best-covered laser (`laser[i]` = row or laser id of point i).
+int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers);
+
+}  // namespace dynobj::core

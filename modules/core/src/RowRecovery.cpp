@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/RowRecovery.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace dynobj::core {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+/// [m] Horizontal distance beyond which a point's elevation is its beam's (a laser's vertical
+/// offset from the sensor origin tilts near points; at 15 m a 0.1 m offset is 0.4 degrees).
+constexpr double kFarRange = 15.0;
+/// Points a row needs beyond kFarRange before its table entry uses only far points.
+constexpr std::size_t kMinFarPoints = 32;
+
+bool usable(const PointCloud& c, std::size_t i) {
+  const float x = c.x[i], y = c.y[i], z = c.z[i];
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) &&
+         !(x == 0.0f && y == 0.0f && z == 0.0f);
+}
+
+double median(std::vector<double>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+std::vector<double> measuredElevations(const PointCloud& c, const std::vector<std::uint16_t>& group,
+                                       int groups) {
+  std::vector<std::vector<double>> near(static_cast<std::size_t>(groups)), far(near.size());
+  for (std::size_t i = 0; i < c.size(); i++) {
+    if (!usable(c, i) || group[i] >= groups) continue;
+    const double h = std::hypot(c.x[i], c.y[i]);
+    (h >= kFarRange ? far : near)[group[i]].push_back(std::atan2(c.z[i], h));
+  }
+  std::vector<double> out(near.size(), std::nan(""));
+  for (std::size_t g = 0; g < out.size(); g++) {
+    if (far[g].size() >= kMinFarPoints) {
+      out[g] = median(far[g]);
+    } else {
+      far[g].insert(far[g].end(), near[g].begin(), near[g].end());
+      if (!far[g].empty()) out[g] = median(far[g]);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+/// Groups ordered top-down by elevation: returns group -> row, and fills `table` (row order,
+/// strictly decreasing). Empty groups sit just below the group with the next lower id.
+std::vector<int> rowsByElevation(std::vector<double> elev, std::vector<double>& table) {
+  for (std::size_t g = 0; g < elev.size(); g++)
+    if (std::isnan(elev[g])) elev[g] = g > 0 ? elev[g - 1] - 1e-5 : M_PI / 4;
+  std::vector<int> order(elev.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return elev[static_cast<std::size_t>(a)] > elev[static_cast<std::size_t>(b)];
+  });
+  std::vector<int> to_row(elev.size());
+  table.resize(elev.size());
+  for (std::size_t r = 0; r < order.size(); r++) {
+    to_row[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
+    double e = elev[static_cast<std::size_t>(order[r])];
+    if (r > 0 && e >= table[r - 1]) e = table[r - 1] - 1e-6;  // keep the table strictly ordered
+    table[r] = e;
+  }
+  return to_row;
+}
+
+/// Rule 2: the laser of each point from the turned azimuth, or 0 lasers when the order is not
+/// laser by laser (fewer than 4 revolutions, or per-laser elevations that do not descend or
+/// ascend monotonically in at least 90 % of steps). A laser ends where the azimuth has turned a
+/// full revolution since the sweep's first point; the exact split within +-kSeam of that turn
+/// (the first point need not lie on the scan's seam) is where the elevation changes from the
+/// one laser's to the next's.
+int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
+  constexpr double kSeam = 5.0 * M_PI / 180.0;
+  const std::size_t n = c.size();
+  std::vector<double> turned(n, 0.0), elev(n, 0.0);
+  double total = 0, prev = 0;
+  bool started = false;
+  for (std::size_t i = 0; i < n; i++) {
+    if (usable(c, i)) {
+      const double az = std::atan2(c.y[i], c.x[i]);
+      if (started) {
+        double d = az - prev;
+        if (d > M_PI) d -= kTwoPi;
+        if (d < -M_PI) d += kTwoPi;
+        total += d;
+      }
+      prev = az;
+      started = true;
+      elev[i] = std::atan2(c.z[i], std::hypot(c.x[i], c.y[i]));
+    }
+    turned[i] = total;
+  }
+  const double sign = total >= 0 ? 1.0 : -1.0;
+  const double revolutions = sign * total / kTwoPi;
+  if (revolutions < 3.0 || revolutions > 4096.0) return 0;
+  laser.resize(n);
+  int lasers = 0;
+  for (std::size_t i = 0; i < n; i++) {
+    turned[i] *= sign;
+    const int k = std::max(0, static_cast<int>(std::floor(turned[i] / kTwoPi)));
+    laser[i] = static_cast<std::uint16_t>(k);
+    lasers = std::max(lasers, k + 1);
+  }
+  // Each laser's elevation away from the seams, then the split of every seam window.
+  std::vector<std::vector<double>> bulk(static_cast<std::size_t>(lasers));
+  for (std::size_t i = 0; i < n; i++) {
+    const double f = turned[i] - kTwoPi * laser[i];
+    if (usable(c, i) && f > kSeam && f < kTwoPi - kSeam) bulk[laser[i]].push_back(elev[i]);
+  }
+  std::vector<double> med(bulk.size(), 0.0);
+  for (std::size_t k = 0; k < bulk.size(); k++) med[k] = bulk[k].empty() ? 0.0 : median(bulk[k]);
+  std::size_t i = 0;
+  for (int b = 1; b < lasers; b++) {
+    const double seam = kTwoPi * b;
+    while (i < n && turned[i] < seam - kSeam) i++;
+    std::size_t end = i;
+    while (end < n && turned[end] <= seam + kSeam) end++;
+    // Split s: points [i, s) stay on laser b-1, [s, end) go to laser b; fewest misfits wins.
+    const double lo = med[static_cast<std::size_t>(b - 1)], hi = med[static_cast<std::size_t>(b)];
+    int misfits = 0;
+    for (std::size_t j = i; j < end; j++)
+      if (usable(c, j) && std::abs(elev[j] - lo) < std::abs(elev[j] - hi)) misfits++;
+    int best = misfits;
+    std::size_t split = i;
+    for (std::size_t j = i; j < end; j++) {
+      if (usable(c, j)) misfits += std::abs(elev[j] - lo) < std::abs(elev[j] - hi) ? -1 : 1;
+      if (misfits < best) {
+        best = misfits;
+        split = j + 1;
+      }
+    }
+    for (std::size_t j = i; j < end; j++)
+      laser[j] = static_cast<std::uint16_t>(j < split ? b - 1 : b);
+    i = end;
+  }
+  const std::vector<double> e = measuredElevations(c, laser, lasers);
+  int down = 0, up = 0;
+  for (std::size_t k = 1; k < e.size(); k++) {
+    if (e[k] < e[k - 1]) down++;
+    if (e[k] > e[k - 1]) up++;
+  }
+  const int steps = lasers - 1;
+  if (std::max(down, up) < 0.9 * steps) return 0;
+  return lasers;
+}
+
+/// Rule 3: `rows` beam elevations from the peaks of the far points' elevation histogram, or an
+/// empty table when it does not show `rows` separate peaks.
+std::vector<double> histogramTable(const PointCloud& c, int rows) {
+  constexpr double kBin = 0.02 * M_PI / 180.0, kMinSeparation = 0.15 * M_PI / 180.0;
+  constexpr int kBins = static_cast<int>(M_PI / kBin) + 1;  // -90..+90 degrees
+  std::vector<double> hist(static_cast<std::size_t>(kBins), 0.0);
+  for (std::size_t i = 0; i < c.size(); i++) {
+    if (!usable(c, i)) continue;
+    const double h = std::hypot(c.x[i], c.y[i]);
+    if (h < kFarRange) continue;
+    const int b = static_cast<int>((std::atan2(c.z[i], h) + M_PI / 2) / kBin);
+    if (b >= 0 && b < kBins) hist[static_cast<std::size_t>(b)] += 1.0;
+  }
+  std::vector<double> smooth(hist.size(), 0.0);
+  for (int b = 2; b + 2 < kBins; b++)
+    for (int k = -2; k <= 2; k++)
+      smooth[static_cast<std::size_t>(b)] += hist[static_cast<std::size_t>(b + k)];
+  std::vector<std::pair<double, int>> peaks;  // (height, bin)
+  for (int b = 1; b + 1 < kBins; b++) {
+    const double v = smooth[static_cast<std::size_t>(b)];
+    if (v >= 3 && v > smooth[static_cast<std::size_t>(b - 1)] &&
+        v >= smooth[static_cast<std::size_t>(b + 1)])
+      peaks.emplace_back(v, b);
+  }
+  std::sort(peaks.begin(), peaks.end(), std::greater<>());
+  std::vector<double> table;
+  for (const auto& [v, b] : peaks) {
+    const double e = (b + 0.5) * kBin - M_PI / 2;
+    const bool apart = std::all_of(table.begin(), table.end(), [&](double t) {
+      return std::abs(t - e) >= kMinSeparation;
+    });
+    if (apart) table.push_back(e);
+    if (static_cast<int>(table.size()) == rows) break;
+  }
+  if (static_cast<int>(table.size()) != rows) return {};
+  std::sort(table.begin(), table.end(), std::greater<>());
+  return table;
+}
+
+SensorModel withTable(const std::optional<SensorModel>& hint, std::vector<double> table,
+                      const char* model) {
+  SensorModel m = hint ? *hint : SensorModel();
+  if (!hint) {
+    m.model = model;
+    m.min_range = 0.3;
+    m.max_range = 200.0;
+  }
+  m.rows = static_cast<int>(table.size());
+  m.beam_elevations = std::move(table);
+  return m;
+}
+
+/// Columns by Eq. (1) for every point of an organized-by-row cloud.
+void assignColumns(PointCloud& c, const SensorModel& m) {
+  const SphericalProjection eq1(m);
+  c.col.resize(c.size());
+  for (std::size_t i = 0; i < c.size(); i++)
+    c.col[i] = static_cast<std::uint16_t>(usable(c, i) ? eq1.columnOf(c.x[i], c.y[i]) : 0);
+}
+
+}  // namespace
+
+const char* toString(RowSource s) {
+  switch (s) {
+    case RowSource::RingField: return "ring field";
+    case RowSource::FiringOrder: return "firing order";
+    case RowSource::EstimatedTable: return "estimated beam table";
+    case RowSource::NominalTable: return "nominal beam table";
+  }
+  return "?";
+}
+
+int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers) {
+  const int fallback = lasers <= 16 ? 1800 : 2048;
+  std::vector<std::size_t> count(static_cast<std::size_t>(lasers) + 1, 0);
+  for (auto l : laser) count[std::min<std::size_t>(l, count.size() - 1)]++;
+  const auto best =
+      static_cast<std::uint16_t>(std::max_element(count.begin(), count.end() - 1) - count.begin());
+  if (count[best] < 64) return fallback;
+  std::vector<double> az;
+  az.reserve(count[best]);
+  for (std::size_t i = 0; i < cloud.size(); i++)
+    if (laser[i] == best && usable(cloud, i)) az.push_back(std::atan2(cloud.y[i], cloud.x[i]));
+  std::sort(az.begin(), az.end());
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < az.size(); i++)
+    if (az[i] - az[i - 1] > 1e-5) steps.push_back(az[i] - az[i - 1]);
+  if (steps.size() < 32) return fallback;
+  const double cols = std::round(kTwoPi / median(steps));
+  return static_cast<int>(std::clamp(cols, 64.0, 16384.0));
+}
+
+RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint) {
+  cloud.validate();
+  cloud.row.clear();
+  cloud.col.clear();
+  RecoveredRows out;
+  std::vector<std::uint16_t> laser;
+  int lasers = 0;
+  if (cloud.hasRing()) {
+    laser = cloud.ring;
+    lasers = laser.empty() ? 0 : *std::max_element(laser.begin(), laser.end()) + 1;
+    out.source = RowSource::RingField;
+  } else {
+    lasers = firingOrderLasers(cloud, laser);
+    out.source = RowSource::FiringOrder;
+  }
+  if (lasers > 0 && hint && lasers < hint->rows) {
+    // Fewer lasers than the sensor has (a partial sweep, blocked beams): each takes the row of
+    // the nearest beam of the hint's table, if no two lasers claim the same row.
+    const std::vector<double> e = measuredElevations(cloud, laser, lasers);
+    const std::vector<double> table = hint->rowElevations();
+    const SphericalProjection eq1(*hint);
+    std::vector<int> to_row(static_cast<std::size_t>(lasers), -1);
+    std::vector<char> taken(table.size(), 0);
+    bool ok = true;
+    for (std::size_t k = 0; k < e.size() && ok; k++) {
+      if (std::isnan(e[k])) continue;
+      const int r = eq1.rowOfElevation(e[k]);
+      ok = r >= 0 && !taken[static_cast<std::size_t>(r)];
+      if (ok) taken[static_cast<std::size_t>(r)] = 1;
+      to_row[k] = r;
+    }
+    if (ok) {
+      out.sensor = *hint;
+      cloud.row.resize(cloud.size());
+      for (std::size_t i = 0; i < cloud.size(); i++)
+        cloud.row[i] = static_cast<std::uint16_t>(std::max(0, to_row[laser[i]]));
+      assignColumns(cloud, out.sensor);
+      return out;
+    }
+  }
+  if (lasers > 0 && (!hint || hint->rows == lasers)) {
+    std::vector<double> table;
+    const std::vector<int> to_row = rowsByElevation(measuredElevations(cloud, laser, lasers), table);
+    out.sensor = withTable(hint, std::move(table), "recovered rows");
+    if (!hint) out.sensor.cols = estimateColumns(cloud, laser, lasers);
+    cloud.row.resize(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); i++)
+      cloud.row[i] = static_cast<std::uint16_t>(to_row[laser[i]]);
+    assignColumns(cloud, out.sensor);
+    return out;
+  }
+  if (!hint)
+    throw std::invalid_argument(
+        "the cloud has no ring field and is not stored laser by laser, so its rows cannot be "
+        "recovered without a sensor model (rows, cols)");
+  std::vector<double> table = histogramTable(cloud, hint->rows);
+  if (!table.empty()) {
+    out.source = RowSource::EstimatedTable;
+    out.sensor = withTable(hint, std::move(table), "estimated table");
+    return out;
+  }
+  out.source = RowSource::NominalTable;
+  out.sensor = *hint;
+  return out;
+}
+
+ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorModel>& hint,
+                                 LidarFrame& frame, RowSource* source) {
+  const RecoveredRows rows = recoverRows(cloud, hint);
+  if (source) *source = rows.source;
+  const SphericalProjection projection(rows.sensor);
+  return cloud.isOrganized() ? projection.organize(cloud, frame) : projection.project(cloud, frame);
+}
+
+}  // namespace dynobj::core

@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mrpt/RecordingImporter.h"
+
+#include <dynobj/core/AtomicFile.h>
+#include <dynobj/core/RowRecovery.h>
+#include <dynobj/io/CloudFolder.h>
+#include <dynobj/io/FormatError.h>
+#include <dynobj/io/OusterPcapReader.h>
+#include <dynobj/io/PoseFile.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "dynobj/mrpt/RangeScanLayout.h"
+#include "dynobj/mrpt/TimeConversion.h"
+
+namespace dynobj::mrpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The output rawlog: written to "<path>.partial", renamed by commit(), removed otherwise.
+class RawlogOutput {
+ public:
+  explicit RawlogOutput(std::string path) : path_(std::move(path)) {
+    if (!file_.open(core::partialName(path_), 1))
+      throw std::runtime_error("cannot write '" + core::partialName(path_) + "'");
+  }
+  ~RawlogOutput() {
+    if (committed_) return;
+    file_.close();
+    std::remove(core::partialName(path_).c_str());
+  }
+  RawlogOutput(const RawlogOutput&) = delete;
+  RawlogOutput& operator=(const RawlogOutput&) = delete;
+  void write(const ::mrpt::serialization::CSerializable& obj) {
+    auto ar = ::mrpt::serialization::archiveFrom(file_);
+    ar << obj;
+  }
+  void commit() {
+    file_.close();
+    core::commitPartial(path_);
+    committed_ = true;
+  }
+
+ private:
+  std::string path_;
+  ::mrpt::io::CFileGZOutputStream file_;
+  bool committed_ = false;
+};
+
+/// Fractional intensities (KITTI remission, 0-1) are stored x 255 (the 8-bit scale of the
+/// sensor they come from); integer-valued ones (Velodyne 0-255, Ouster 8/16-bit) as they are.
+double intensityScale(const core::PointCloud& c) {
+  if (!c.hasIntensity()) return 1.0;
+  float hi = 0;
+  for (float v : c.intensity)
+    if (std::isfinite(v)) hi = std::max(hi, v);
+  return hi <= 1.0f ? 255.0 : 1.0;
+}
+
+class SweepWriter {
+ public:
+  SweepWriter(const ImportOptions& o, const std::string& output, std::size_t sweeps)
+      : o_(o), out_(output) {
+    if (!o.poses.empty()) {
+      poses_ = io::readPoseFile(o.poses);
+      if (sweeps && poses_.size() != sweeps)
+        throw std::runtime_error("'" + o.poses + "' has " + std::to_string(poses_.size()) +
+                                 " poses but the recording has " + std::to_string(sweeps) +
+                                 " sweeps");
+    }
+  }
+
+  void write(const core::LidarFrame& frame, const core::ProjectionStats& st, ImportSummary& s) {
+    const auto stamp = fromUnixNs(frame.timestamp_ns);
+    if (!poses_.empty()) {
+      if (s.sweeps >= poses_.size())
+        throw std::runtime_error("'" + o_.poses + "' has no pose for sweep " +
+                                 std::to_string(s.sweeps));
+      const Eigen::Isometry3d& p = poses_[s.sweeps].pose;
+      ::mrpt::obs::CObservationOdometry odo;
+      odo.sensorLabel = "ODOMETRY";
+      odo.timestamp = stamp;
+      odo.odometry = ::mrpt::poses::CPose2D(p.translation().x(), p.translation().y(),
+                                            std::atan2(p.linear()(1, 0), p.linear()(0, 0)));
+      out_.write(odo);
+      s.odometry++;
+    }
+    ::mrpt::obs::CObservation3DRangeScan scan;
+    frameToRangeScan(frame, scan);
+    scan.sensorLabel = o_.sensor_label;
+    scan.timestamp = stamp;
+    out_.write(scan);
+    s.sweeps++;
+    s.points += st.input_points;
+    s.pixels += st.pixels_set;
+    s.hidden += st.hidden;
+    s.outside_fov += st.outside_fov;
+    s.invalid += st.invalid;
+    s.rows = frame.rows();
+    s.cols = frame.cols();
+  }
+  void commit() { out_.commit(); }
+
+ private:
+  const ImportOptions& o_;
+  RawlogOutput out_;
+  std::vector<io::TimedPose> poses_;
+};
+
+ImportSummary importFolder(const ImportOptions& o, const std::string& output,
+                           const ImportProgress& progress) {
+  io::CloudFolder folder(o.input, o.times);
+  if (o.times.empty()) folder.setPeriodNs(static_cast<std::int64_t>(std::llround(1e9 / o.rate)));
+  ImportSummary s;
+  s.source = (folder.extension() == ".pcd" ? "PCD folder '" : "KITTI .bin folder '") + o.input +
+             "' (" + std::to_string(folder.size()) + " sweeps)";
+  SweepWriter writer(o, output, folder.size());
+  std::optional<core::SensorModel> hint = o.sensor;
+  core::LidarFrame frame;
+  double scale = 0;
+  for (std::size_t k = 0; k < folder.size(); k++) {
+    io::CloudFile file = folder.read(k);
+    core::PointCloud& cloud = file.cloud;
+    if (!file.viewpoint.isApprox(Eigen::Isometry3d::Identity())) {  // points -> sensor frame
+      const Eigen::Isometry3f to_sensor = file.viewpoint.inverse().cast<float>();
+      for (std::size_t i = 0; i < cloud.size(); i++) {
+        const Eigen::Vector3f p = to_sensor * Eigen::Vector3f(cloud.x[i], cloud.y[i], cloud.z[i]);
+        cloud.x[i] = p.x();
+        cloud.y[i] = p.y();
+        cloud.z[i] = p.z();
+      }
+    }
+    if (scale == 0) {  // decided once, on the first sweep, so every sweep has the same scale
+      scale = intensityScale(cloud);
+      s.intensity = file.intensity_field.empty()
+                        ? "none (the detector uses range)"
+                        : "'" + file.intensity_field + "'" + (scale != 1 ? " x 255" : "");
+    }
+    for (float& v : cloud.intensity) v = static_cast<float>(v * scale);
+    core::RowSource source{};
+    core::ProjectionStats st;
+    try {
+      st = core::projectUnordered(cloud, hint, frame, &source);
+    } catch (const std::invalid_argument& e) {
+      throw io::FormatError(folder.path(k) + ": " + e.what() + "; give --sensor");
+    }
+    if (!hint && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
+      hint = frame.sensor;  // later sweeps keep the first complete sweep's rows
+    if (s.rows_from.empty() || source != core::RowSource::FiringOrder)
+      s.rows_from = core::toString(source);
+    // MRPT reads a zero timestamp as 'invalid': without a times file, sweep k is at (k+1) periods.
+    frame.timestamp_ns = folder.timestampNs(k) + (folder.hasTimes() ? 0 : folder.periodNs());
+    writer.write(frame, st, s);
+    if (progress) progress(k + 1, folder.size());
+  }
+  writer.commit();
+  return s;
+}
+
+ImportSummary importPcap(const ImportOptions& o, const std::string& output,
+                         const ImportProgress& progress) {
+  if (o.meta.empty())
+    throw std::runtime_error("'" + o.input + "' is a pcap: give its sensor metadata JSON (--meta)");
+  const io::OusterMetadata meta = io::OusterMetadata::load(o.meta);
+  io::OusterPcapReader reader(o.input, meta);
+  const core::SensorModel model = meta.sensorModel();
+  const core::SphericalProjection organizer(model);
+  ImportSummary s;
+  s.source = "Ouster pcap '" + o.input + "' (" + meta.prod_line + ", " + meta.profile + ")";
+  s.rows_from = "metadata beam table";
+  SweepWriter writer(o, output, 0);
+  io::OusterScan scan;
+  core::LidarFrame frame;
+  while (reader.next(scan)) {
+    const core::ProjectionStats st = organizer.organize(scan.cloud, frame);
+    frame.timestamp_ns = scan.timestamp_ns;
+    s.intensity = scan.intensity_field;
+    writer.write(frame, st, s);
+    if (progress) progress(s.sweeps, 0);
+  }
+  if (s.sweeps == 0)
+    throw io::FormatError(o.input + ": no complete frame (" +
+                          std::to_string(reader.stats().partial_frames_skipped) +
+                          " partial frames skipped)");
+  writer.commit();
+  return s;
+}
+
+}  // namespace
+
+ImportSummary importRecording(const ImportOptions& o, const std::string& output,
+                              const ImportProgress& progress) {
+  if (!(o.rate > 0)) throw std::invalid_argument("the sweep rate must be > 0 Hz");
+  if (fs::is_directory(o.input)) return importFolder(o, output, progress);
+  if (!fs::exists(o.input)) throw std::runtime_error("'" + o.input + "' does not exist");
+  const std::string ext = fs::path(o.input).extension().string();
+  if (ext == ".pcap" || ext == ".pcapng") return importPcap(o, output, progress);
+  throw std::runtime_error("'" + o.input +
+                           "' is neither a folder of .pcd/.bin sweeps nor a .pcap capture");
+}
+
+}  // namespace dynobj::mrpt
