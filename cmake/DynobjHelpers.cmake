@@ -27,7 +27,8 @@ function(dynobj_add_module)
   add_library(${tgt} ${ARG_SOURCES})
   add_library(dynobj::${ARG_NAME} ALIAS ${tgt})
   set_target_properties(${tgt} PROPERTIES EXPORT_NAME ${ARG_NAME} OUTPUT_NAME dynobj-${ARG_NAME}
-                                          VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR})
+                                          VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}
+                                          INSTALL_RPATH "$ORIGIN")  # installed modules find each other
   target_compile_features(${tgt} PUBLIC cxx_std_17)
   target_include_directories(${tgt} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
                                            $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)

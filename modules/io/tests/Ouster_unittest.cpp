@@ -19,8 +19,11 @@ namespace {
 
 constexpr int kRows = 4, kCols = 16, kPerPacket = 4;
 
+// Per-test names: CTest runs the tests of this binary as parallel processes.
 std::string tempPath(const std::string& name) {
-  return ::testing::TempDir() + "ouster_" + name;
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  return ::testing::TempDir() + "ouster_" + test->test_suite_name() + "_" + test->name() + "_" +
+         name;
 }
 
 void put(std::string& s, std::uint64_t v, int bytes, bool big_endian = false) {

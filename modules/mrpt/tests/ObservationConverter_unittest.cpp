@@ -166,7 +166,7 @@ TEST(ObservationConverter, PointCloudNeedsSensorAndKeepsIntensity) {
   mobs::CObservationPointCloud o;
   o.sensorLabel = "PC";
   o.pointcloud = pc;
-  expectError(ObservationConverter(), o, "needs a sensor model");
+  expectError(ObservationConverter(), o, "without a sensor model");  // no ring, no laser order
   LidarFrame f;
   const auto st = ObservationConverter(tinySensor()).convert(o, f);
   EXPECT_EQ(st.invalid, 1u);

@@ -60,9 +60,8 @@ struct OusterMetadata {
 
   /// The sensor model of the project: model = prod_line ("Ouster" if unknown), rows, cols,
   /// beam_elevations = beam altitudes [rad] in row order, frequency; min_range 0.3 m; max_range
-  /// by product line: OS-0 75 m, OS-1 120 m, OS-2 240 m, unknown 120 m (Ouster's data sheets
-  /// give 35-100 m, 90-200 m and 180-400 m at 10-80 % reflectivity; the presets in
-  /// share/dynobj/sensors use 75 and 120).
+  /// by product line: OS-0 75 m, OS-1 120 m, OS-2 240 m, unknown 120 m (nominal figures, the
+  /// presets in share/dynobj/sensors use 75 and 120; the projection does not clip to them).
   core::SensorModel sensorModel() const;
 
   bool hasSignal() const { return profile != "RNG15_RFL8_NIR8"; }
