@@ -5,39 +5,21 @@
 #include <dynobj/io/PcdFile.h>
 #include <gtest/gtest.h>
 
+#include "PcdTestFiles.h"
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
 
 namespace io = dynobj::io;
+using pcd_test::expectError;
+using pcd_test::raw;
+using pcd_test::tmp;
+using pcd_test::write;
 
 namespace {
 
-std::string tmp(const std::string& name) {
-  return ::testing::TempDir() + "dynobj-io-pcd-" + name;
-}
-
-std::string write(const std::string& name, const std::string& bytes) {
-  const std::string p = tmp(name);
-  std::ofstream(p, std::ios::binary) << bytes;
-  return p;
-}
-
-template <typename T>
-std::string raw(T v) {
-  return std::string(reinterpret_cast<const char*>(&v), sizeof(v));
-}
-
-void expectError(const std::string& path, const std::string& what) {
-  try {
-    io::readPcd(path);
-    ADD_FAILURE() << "no error for: " << what;
-  } catch (const io::FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-  }
-}
 
 const std::string kXyz = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();

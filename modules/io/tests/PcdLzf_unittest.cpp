@@ -5,29 +5,20 @@
 #include <dynobj/io/PcdFile.h>
 #include <gtest/gtest.h>
 
+#include "PcdTestFiles.h"
+
 #include <algorithm>
 #include <fstream>
 
 #include "../src/Lzf.h"
 
 namespace io = dynobj::io;
+using pcd_test::expectError;
+using pcd_test::raw;
+using pcd_test::tmp;
+using pcd_test::write;
 
 namespace {
-
-std::string tmp(const std::string& name) {
-  return ::testing::TempDir() + "dynobj-io-pcd-" + name;
-}
-
-std::string write(const std::string& name, const std::string& bytes) {
-  const std::string p = tmp(name);
-  std::ofstream(p, std::ios::binary) << bytes;
-  return p;
-}
-
-template <typename T>
-std::string raw(T v) {
-  return std::string(reinterpret_cast<const char*>(&v), sizeof(v));
-}
 
 /// A greedy LZF compressor for the tests (brute-force longest match within 8 KiB).
 std::string lzf(const std::string& in) {
@@ -70,15 +61,6 @@ std::string unlzf(const std::string& in, std::size_t n, std::string* problem = n
   return p.empty() ? out : "";
 }
 
-void expectError(const std::string& path, const std::string& what) {
-  try {
-    io::readPcd(path);
-    ADD_FAILURE() << "no error for: " << what;
-  } catch (const io::FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-  }
-}
 
 }  // namespace
 
