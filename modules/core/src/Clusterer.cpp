@@ -35,6 +35,7 @@ void ClusteringParams::visit(ParamVisitor& v) {
   v.value("vertical_distance", vertical_distance);
   v.value("min_points", min_points);
   v.value("max_points", max_points);
+  v.value("max_area", max_area);
   v.value("max_length", max_length);
   v.value("voxel", voxel);
   v.value("search", search);
@@ -49,6 +50,7 @@ void ClusteringParams::validate() const {
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("max_window", max_window, 1, 1000);
   requireInRange("max_length", max_length, 0, 1e6);
+  requireInRange("max_area", max_area, 0, 1e6);
   requireInRange("voxel", voxel, 0, 0.5 * std::min(horizontal_distance, vertical_distance));
 }
 
@@ -138,10 +140,13 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
     if (m[i] && v[i]) pixels_.push_back(i);
   if (pixels_.empty()) return;
   std::vector<int>& label = label_;
+  voxels_.clear();
   if (p_.search == "image")
     clusterImage(f, label);
   else
     clusterPoints(f, label);
+  const bool by_area = p_.max_area > 0 && p_.voxel > 0 && !voxels_.empty();
+  const auto max_voxels = static_cast<int>(p_.max_area / (p_.voxel * p_.voxel));
   // Gather the components (labels are union-find roots) and keep those of a plausible size.
   count_.assign(pixels_.size(), 0);
   for (int l : label) count_[static_cast<std::size_t>(l)]++;
@@ -149,6 +154,7 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   for (std::size_t i = 0; i < pixels_.size(); i++) {
     const auto l = static_cast<std::size_t>(label[i]);
     if (count_[l] < p_.min_points || count_[l] > p_.max_points) continue;
+    if (by_area && voxels_[l] > max_voxels) continue;
     if (slot_[l] < 0) {
       slot_[l] = static_cast<int>(out.size());
       out.emplace_back();
@@ -249,6 +255,12 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
     const auto r = static_cast<std::size_t>(root(parent, rep_of[i]));
     if (first_feature[r] < 0) first_feature[r] = static_cast<int>(i);
     label[i] = first_feature[r];
+  }
+  if (p_.voxel > 0) {  // each representative is one voxel of its component
+    voxels_.assign(pixels_.size(), 0);
+    for (std::size_t r = 0; r < pts_.size(); r++)
+      voxels_[static_cast<std::size_t>(
+          first_feature[static_cast<std::size_t>(root(parent, static_cast<int>(r)))])]++;
   }
 }
 

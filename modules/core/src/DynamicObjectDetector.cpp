@@ -161,7 +161,9 @@ const DetectionResult& DynamicObjectDetector::process(
     MovementDecision d = movement_.analyse(tr.window, chain_, c, dt);
     if (d.moving()) {  // beyond the paper: was the space it occupies now free at the window start?
       const long past = std::max(chain_.oldest(), frame_index_ - params_.free_space.lookback);
-      const FreeSpaceEvidence e = free_space_.evidence(frame, frame_index_, c, past, chain_);
+      const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(frame_index_ - past);
+      const FreeSpaceEvidence e =
+          free_space_.evidence(frame, frame_index_, c, past, chain_, shift);
       // A long object exempted from Eq. (23) as a rigid mover (a car) must prove its motion: a
       // background strip framed by moving occluders also "moves" rigidly, but no free space
       // was ever seen where it is.

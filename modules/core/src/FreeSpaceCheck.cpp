@@ -55,9 +55,27 @@ void FreeSpaceCheck::remember(long index, const LidarFrame& frame) {
   ranges_.emplace_back(index, frame.range.clone());
 }
 
+namespace {
+
+/// One ray test: `seen` is the range measured along the ray through a point expected at range
+/// `expected`.
+void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
+  if (seen <= 0)
+    e.unknown++;  // no return
+  else if (seen > expected + tol)
+    e.free++;  // the ray went through: free space
+  else if (seen >= expected - tol)
+    e.occupied++;  // a surface is there
+  else
+    e.unknown++;  // something nearer hid it
+}
+
+}  // namespace
+
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,
                                            const Cluster& cluster, long past,
-                                           const FrameChain& chain) const {
+                                           const FrameChain& chain,
+                                           const std::optional<Eigen::Vector3d>& shift) const {
   FreeSpaceEvidence e;
   const cv::Mat_<float>* old = nullptr;
   for (const auto& [idx, r] : ranges_)
@@ -76,16 +94,20 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
       e.unknown++;
       continue;
     }
-    const double seen = (*old)(r, c), expected = q.norm();
-    const double tol = p_.margin + p_.range_factor * expected;
-    if (seen <= 0)
-      e.unknown++;  // no return then
-    else if (seen > expected + tol)
-      e.free++;  // the ray went through: free space
-    else if (seen >= expected - tol)
-      e.occupied++;  // a surface was already there
-    else
-      e.unknown++;  // something nearer hid it
+    const double expected = q.norm();
+    tally(e, (*old)(r, c), expected, p_.margin + p_.range_factor * expected);
+  }
+  if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
+  for (int px : cluster.pixels) {  // no verdict (hidden then): the space it left, seen now
+    const cv::Vec3f& p = frame.xyz(px / W, px % W);
+    const Eigen::Vector3d q = Eigen::Vector3d(p[0], p[1], p[2]) - *shift;
+    int r = -1, c = -1;
+    if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) {
+      e.unknown++;
+      continue;
+    }
+    const double expected = q.norm();
+    tally(e, frame.range(r, c), expected, p_.margin + p_.range_factor * expected);
   }
   return e;
 }

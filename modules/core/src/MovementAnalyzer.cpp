@@ -73,7 +73,9 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
 
   d.displacement = (cw.back() - cw.front()).norm();                                  // Eq. (19)
   for (std::size_t j = 1; j < cw.size(); j++) d.path += (cw[j] - cw[j - 1]).norm();  // Eq. (20)
-  d.speed = d.displacement / std::max(1e-6, static_cast<double>(last - first) * dt);
+  const double duration = std::max(1e-6, static_cast<double>(last - first) * dt);
+  d.speed = d.displacement / duration;
+  d.velocity = chain.between(first, last).linear().transpose() * (cw.back() - cw.front()) / duration;
   d.candidate = d.displacement > p_.min_displacement && d.speed <= p_.max_speed;
   d.drift = d.path <= 0 || d.displacement / d.path < p_.min_straightness;
 

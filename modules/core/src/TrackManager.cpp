@@ -15,6 +15,8 @@ void TrackingParams::visit(ParamVisitor& v) {
   v.value("hysteresis", hysteresis);
   v.value("confirm_frames", confirm_frames);
   v.value("release_frames", release_frames);
+  v.value("settled_frames", settled_frames);
+  v.value("settled_confirm_frames", settled_confirm_frames);
 }
 
 void TrackingParams::validate() const {
@@ -23,6 +25,8 @@ void TrackingParams::validate() const {
   requirePositive("measurement_noise", measurement_noise);
   requireInRange("confirm_frames", confirm_frames, 1, 1000);
   requireInRange("release_frames", release_frames, 1, 1000);
+  requireInRange("settled_frames", settled_frames, 1, 100000);
+  requireInRange("settled_confirm_frames", settled_confirm_frames, 1, 1000);
 }
 
 TrackManager::TrackManager(const TrackingParams& p, int window)
@@ -129,11 +133,15 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
   if (moving) {
     t.positives++;
     t.negatives = 0;
-    if (t.positives >= p_.confirm_frames) t.dynamic = true;
+    if (t.positives >= (t.settled ? p_.settled_confirm_frames : p_.confirm_frames)) {
+      t.dynamic = true;
+      t.settled = false;
+    }
   } else if (d.enough_history) {  // no verdict without a full window
     t.negatives++;
     t.positives = 0;
     if (t.negatives >= p_.release_frames) t.dynamic = false;
+    if (t.negatives >= p_.settled_frames) t.settled = true;
   }
 }
 

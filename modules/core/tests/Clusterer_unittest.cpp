@@ -159,3 +159,34 @@ TEST(Clusterer, PcaOfAWall) {
   EXPECT_NEAR(out[0].length, 1.9, 1e-5);
   EXPECT_GT(out[0].elongation, 10);
 }
+
+TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
+  // A: 40 features packed in one 0.17 m voxel (a near object: many pixels, tiny area).
+  // B: a 2 m x 1 m sheet, one feature every 0.2 m: 66 features in 66 voxels = 1.9 m^2.
+  std::vector<std::array<float, 5>> pts;
+  for (int i = 0; i < 40; i++)
+    pts.push_back({0.f + i / 32, static_cast<float>(i % 32), 3.01f + 0.003f * (i % 7),
+                   -2.01f + 0.003f * (i % 5), 0.01f});
+  for (int i = 0; i < 11; i++)
+    for (int j = 0; j < 6; j++)
+      pts.push_back({static_cast<float>(4 + j), static_cast<float>(i), 6.f + 0.2f * i, 2.f,
+                     0.2f * j - 0.5f});
+  const LidarFrame f = pointsFrame(pts);
+  for (const char* search : {"grid", "kdtree"}) {
+    ClusteringParams p;
+    p.search = search;
+    p.min_points = 1;
+    p.max_length = 0;
+    p.max_area = 1.0;  // m^2: the sheet is larger, the packed object is not
+    std::vector<Cluster> out;
+    Clusterer(p).cluster(f, f.valid, out);
+    ASSERT_EQ(out.size(), 1u) << search;
+    EXPECT_EQ(out[0].pixels.size(), 40u) << search;
+    p.max_area = 3.0;  // both fit
+    Clusterer(p).cluster(f, f.valid, out);
+    EXPECT_EQ(out.size(), 2u) << search;
+    p.max_area = 0;  // no limit
+    Clusterer(p).cluster(f, f.valid, out);
+    EXPECT_EQ(out.size(), 2u) << search;
+  }
+}

@@ -82,3 +82,37 @@ TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
   // Unknown past frame: no verdict, the candidate is kept.
   EXPECT_TRUE(check.evidence(f1, 1, clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
 }
+
+TEST(FreeSpaceCheck, ObjectMovingAwayProvesMotionByTheSpaceItLeft) {
+  // A post 4 m ahead moves 1 m straight away from the sensor. In the old frame, the space it
+  // occupies now was hidden behind it (no verdict); now, the space it left is seen through.
+  const auto s = dynobj::test::smallSensor(32, 512);
+  Scene before, after;
+  before.posts = {{4, 0, 0.3, 1.8}};
+  after.posts = {{5, 0, 0.3, 1.8}};
+  const LidarFrame f0 = dynobj::test::render(before, s, true, 1);
+  const LidarFrame f1 = dynobj::test::render(after, s, true, 2);
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  chain.push(1, Eigen::Isometry3d::Identity(), true);
+  FreeSpaceCheck check;
+  check.remember(0, f0);
+  Cluster c;
+  for (int r = 0; r < f1.rows(); r++)
+    for (int col = 0; col < f1.cols(); col++) {
+      const cv::Vec3f& p = f1.xyz(r, col);
+      if (f1.isValid(r, col) && std::hypot(p[0] - 5, p[1]) < 0.35 && p[2] > -0.7f)
+        c.pixels.push_back(r * f1.cols() + col);
+    }
+  ASSERT_GT(c.pixels.size(), 5u);
+  const auto hidden = check.evidence(f1, 1, c, 0, chain);
+  EXPECT_EQ(hidden.free + hidden.occupied, 0);  // hidden then: no verdict either way
+  EXPECT_FALSE(hidden.provesMotion(check.params()));
+  const auto left = check.evidence(f1, 1, c, 0, chain, Eigen::Vector3d(1, 0, 0));
+  EXPECT_GE(left.free, static_cast<int>(c.pixels.size()) / 2);
+  EXPECT_EQ(left.occupied, 0);
+  EXPECT_TRUE(left.provesMotion(check.params()));
+  // A post that did not move: the space "left" behind it is the post itself, still occupied.
+  const auto stayed = check.evidence(f1, 1, c, 0, chain, Eigen::Vector3d(0.05, 0, 0));
+  EXPECT_FALSE(stayed.provesMotion(check.params()));
+}

@@ -237,3 +237,34 @@ TEST(TrackManager, HysteresisStopsFlicker) {
   raw.decide(u, no);
   EXPECT_FALSE(u.dynamic);
 }
+
+TEST(TrackManager, SettledTracksNeedLongerConfirmation) {
+  TrackingParams p;
+  p.confirm_frames = 2;
+  p.settled_frames = 3;
+  p.settled_confirm_frames = 4;
+  TrackManager tm(p, 5);
+  MovementDecision yes, no;
+  yes.enough_history = yes.candidate = true;
+  no.enough_history = true;
+  Track fresh;  // never judged static: the usual two frames
+  tm.decide(fresh, yes);
+  tm.decide(fresh, yes);
+  EXPECT_TRUE(fresh.dynamic);
+  Track post;  // static three times in a row: settled, a two-frame flicker stays static
+  for (int i = 0; i < 3; i++) tm.decide(post, no);
+  EXPECT_TRUE(post.settled);
+  for (int i = 0; i < 3; i++) {
+    tm.decide(post, yes);
+    EXPECT_FALSE(post.dynamic) << "moving decision " << i + 1;
+  }
+  tm.decide(post, yes);  // the fourth in a row: it really started
+  EXPECT_TRUE(post.dynamic);
+  EXPECT_FALSE(post.settled);
+  Track brief;  // two static decisions are not enough to settle
+  tm.decide(brief, no);
+  tm.decide(brief, no);
+  tm.decide(brief, yes);
+  tm.decide(brief, yes);
+  EXPECT_TRUE(brief.dynamic);
+}

@@ -21,7 +21,10 @@ struct ClusteringParams : public StageParams {
   double horizontal_distance = 0.35;  ///< epsilon_xy [m]
   double vertical_distance = 0.6;     ///< epsilon_z [m]
   int min_points = 4;                 ///< smaller clusters are dropped
-  int max_points = 3000;              ///< larger clusters are dropped (walls, shelves, the floor)
+  int max_points = 100000;            ///< larger clusters are dropped (a safety bound in pixels)
+  double max_area = 20.0;  ///< [m^2] grid/kdtree with voxel > 0: clusters whose features fill
+                           ///< more voxels than this area are dropped (facades, shelves); a car
+                           ///< seen from 2 m fills ~10 m^2 (0 = no limit)
   double max_length = 6.0;      ///< [m] longer clusters are dropped too (0 = no limit): cars fit
   std::string search = "grid";  ///< neighbour search: grid | kdtree | image
   double voxel = 0.17;          ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
@@ -63,6 +66,7 @@ class Clusterer {
   std::vector<int> pixels_;
   cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
   std::vector<int> count_, slot_;
+  std::vector<int> voxels_;  ///< per component label: voxels (representatives) it spans
   std::vector<int> label_, parent_, rep_of_, first_feature_;  ///< per-frame scratch, kept
   std::vector<std::uint64_t> slot_key_;  ///< voxel hash table: key of each slot ...
   std::vector<int> slot_rep_;            ///< ... and its representative (index in pts_)

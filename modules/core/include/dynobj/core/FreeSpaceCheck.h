@@ -47,8 +47,14 @@ class FreeSpaceCheck {
   /// Keeps this frame's range image (bounded history).
   void remember(long index, const LidarFrame& frame);
   /// Evidence for `cluster` (pixels of `frame`, frame index `current`) against frame `past`.
+  /// When that gives no verdict and `shift` (the cluster's displacement from `past` to
+  /// `current`, in the current frame [m]) is given, the space it left is tested instead: its
+  /// points moved back by `shift` should lie where the current frame sees through. An object
+  /// moving away from the sensor hid, in the old frame, the space it occupies now; the space it
+  /// left is free now.
   FreeSpaceEvidence evidence(const LidarFrame& frame, long current, const Cluster& cluster,
-                             long past, const FrameChain& chain) const;
+                             long past, const FrameChain& chain,
+                             const std::optional<Eigen::Vector3d>& shift = std::nullopt) const;
   const FreeSpaceParams& params() const { return p_; }
 
  private:

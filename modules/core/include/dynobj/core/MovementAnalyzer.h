@@ -58,6 +58,7 @@ struct MovementDecision {
   double path = 0;              ///< f_a, Eq. (20) [m]
   double angle = M_PI / 2;      ///< theta, Eq. (23) [rad], pi/2 when not tested
   double speed = 0;             ///< f / window duration [m/s]
+  Eigen::Vector3d velocity{0, 0, 0};  ///< f's vector / window duration, current frame [m/s]
   bool candidate = false;       ///< f > epsilon_d
   bool drift = false;           ///< f / f_a < epsilon_o
   bool long_object = false;     ///< elongated and moving along itself

@@ -22,6 +22,9 @@ struct TrackingParams : public StageParams {
   bool hysteresis = true;  ///< confirm / release counters (false: state = this frame's test)
   int confirm_frames = 2;  ///< consecutive moving decisions to become dynamic
   int release_frames = 4;  ///< consecutive static decisions to become static again
+  int settled_frames = 10;  ///< a track judged static this many times in a row is settled ...
+  int settled_confirm_frames = 4;  ///< ... and needs this many moving decisions instead: trees,
+                                   ///< poles and parked cars flicker; a real start keeps moving
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -38,6 +41,7 @@ struct Track {
   double z = 0;  ///< last observed centroid height
   bool dynamic = false;
   int positives = 0, negatives = 0;
+  bool settled = false;  ///< judged static settled_frames times in a row since it last moved
   MovementDecision decision;
 
   Eigen::Vector3d position() const { return {state(0), state(1), z}; }
