@@ -4,6 +4,7 @@
 #include <dynobj/mrpt/RawlogReader.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
+#include <dynobj/sim/TopView.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/system/filesystem.h>
@@ -153,4 +154,29 @@ TEST(LidarSimulator, MotionDistortionShiftsColumnsOnlyWhenMoving) {
   const auto still_dist = run("{trajectory: {type: stationary, at: [0, 0]}}", true);
   EXPECT_EQ(cv::norm(still_plain.frame.range, still_dist.frame.range, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(moving_plain.frame.range, moving_dist.frame.range, cv::NORM_INF), 0.05);
+}
+
+TEST(LidarSimulator, TopViewShowsMovingActorsInRed) {
+  const LidarSimulator sim(load(base(
+      "actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, "
+      "2]], speed: 1}}\n  - {class: pedestrian, trajectory: {type: stationary, at: [0, 3]}}\n")));
+  const auto sw = sim.simulate(3);
+  const cv::Mat img = topView(sw, {sw.sensor_pose.translation()}, 0.1, 10.0);
+  ASSERT_EQ(img.rows, 200);
+  // Sensor at the centre (100, 100), 0.1 m per pixel, +y up: the walker red, the stander blue.
+  ASSERT_GT(sw.actors[0].points, 0);
+  ASSERT_GT(sw.actors[1].points, 0);
+  auto colourAt = [&](const Eigen::Vector3d& p) {
+    const int x = static_cast<int>(100 + p.x() * 10), y = static_cast<int>(100 - p.y() * 10);
+    cv::Vec3b best(0, 0, 0);
+    for (int dy = -5; dy <= 5; dy++)
+      for (int dx = -5; dx <= 5; dx++) {
+        const cv::Vec3b v = img.at<cv::Vec3b>(y + dy, x + dx);
+        if (v[2] > 200 && v[0] < 100) return std::string("red");
+        if (v[0] > 200 && v[2] < 100) best = v;
+      }
+    return std::string(best[0] > 200 ? "blue" : "none");
+  };
+  EXPECT_EQ(colourAt(sw.actors[0].position), "red");
+  EXPECT_EQ(colourAt(sw.actors[1].position), "blue");
 }
