@@ -39,7 +39,7 @@ if [ "${1:-}" = "--cell" ]; then
   fi
   t0=$(date +%s)
   if ! "$BIN/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/$scen.yaml" -o "$dir/sim" \
-       --frames "$FRAMES" --seed "$seed" "${sets[@]}" -q > "$dir/sim.log" 2>&1 ||
+       --frames "$FRAMES" --seed "$seed" "${sets[@]}" --compression 0 -q > "$dir/sim.log" 2>&1 ||
      ! "$BIN/dynobj-eval" --run "$dir/sim" -o "$dir/eval" --modes intensity --overlays 0 \
        -c "$CONFIG" -q > "$dir/eval.log" 2>&1; then
     echo "[matrix] FAILED $scen $sensor seed $seed $md (see $dir/*.log)" >&2

@@ -51,6 +51,10 @@ int run(int argc, char** argv) {
                                      "Also write the generated world of a procedural scenario "
                                      "(YAML: floor, static, actors, platform) to this file",
                                      false, "", "file.yaml", cmd);
+  TCLAP::ValueArg<int> compression("", "compression",
+                                   "gzip level of the rawlog: 0 (fastest, largest) to 9 "
+                                   "(default 1)",
+                                   false, 1, "0-9", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
@@ -71,7 +75,7 @@ int run(int argc, char** argv) {
   }
   std::vector<Eigen::Vector3d> path;
 
-  dynobj::sim::SequenceWriter writer(out.getValue(), s);
+  dynobj::sim::SequenceWriter writer(out.getValue(), s, compression.getValue());
   const bool tty = isatty(STDERR_FILENO) && !quiet.isSet();
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t points = 0, dynamic = 0;

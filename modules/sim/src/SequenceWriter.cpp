@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <stdexcept>
 
 namespace dynobj::sim {
 namespace {
@@ -47,14 +48,18 @@ namespace {
 
 }  // namespace
 
-SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario)
+SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario,
+                               int compression)
     : s_(scenario), base_(out_dir + "/" + scenario.name), odo_rng_(scenario.seed ^ 0x5EEDu) {
+  if (compression < 0 || compression > 9)
+    throw std::invalid_argument("rawlog compression must be 0..9, got " +
+                                std::to_string(compression));
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
   rawlog_ = std::make_unique<::mrpt::io::CFileGZOutputStream>();
-  if (!rawlog_->open(core::partialName(rawlogPath())))
+  if (!rawlog_->open(core::partialName(rawlogPath()), compression))
     throw std::runtime_error("cannot write '" + core::partialName(rawlogPath()) + "'");
   labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
   instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows,
