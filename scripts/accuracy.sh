@@ -4,7 +4,13 @@
 # sweeps, fixed seeds), runs this detector (own intensity ego-motion, ground-truth ego-motion,
 # drifting odometry) and MRPT's CPointCloudFilterByDistance, and writes one report per scenario
 # plus out/accuracy/accuracy.md (all tables). Usage: scripts/accuracy.sh [scenario ...]
+# scripts/accuracy.sh --matrix [options] runs the evaluation matrix instead (every scenario x
+# seeds x every sensor preset x motion distortion): scripts/accuracy-matrix.sh --help.
 set -euo pipefail
+if [ "${1:-}" = "--matrix" ]; then
+  shift
+  exec "$(dirname "${BASH_SOURCE[0]}")/accuracy-matrix.sh" "$@"
+fi
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 ensure_packages

@@ -3,10 +3,12 @@
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
+#include <dynobj/sim/TopView.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -41,6 +43,18 @@ int run(int argc, char** argv) {
                                "Also write <name>.preview.png: sweep K's intensity with the "
                                "ground-truth dynamic pixels in red",
                                false, -1, "K", cmd);
+  TCLAP::ValueArg<int> topview("", "topview",
+                               "Also write <name>.topview.png: sweep K seen from above (static "
+                               "grey, standing actors blue, moving actors red, sensor path green)",
+                               false, -1, "K", cmd);
+  TCLAP::ValueArg<std::string> world("", "world",
+                                     "Also write the generated world of a procedural scenario "
+                                     "(YAML: floor, static, actors, platform) to this file",
+                                     false, "", "file.yaml", cmd);
+  TCLAP::ValueArg<int> compression("", "compression",
+                                   "gzip level of the rawlog: 0 (fastest, largest) to 9 "
+                                   "(default 1)",
+                                   false, 1, "0-9", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
@@ -50,11 +64,18 @@ int run(int argc, char** argv) {
   const dynobj::sim::LidarSimulator sim(dynobj::sim::Scenario::fromYamlFile(
       scenario.getValue(), dynobj::apps::shareDir(), overrides));
   const auto& s = sim.scenario();
-  if (preview.isSet() && (preview.getValue() < 0 || preview.getValue() >= s.frames))
-    throw std::invalid_argument("--preview must be a sweep index in [0, " +
-                                std::to_string(s.frames - 1) + "]");
+  for (auto* arg : {&preview, &topview})
+    if (arg->isSet() && (arg->getValue() < 0 || arg->getValue() >= s.frames))
+      throw std::invalid_argument("--" + arg->getName() + " must be a sweep index in [0, " +
+                                  std::to_string(s.frames - 1) + "]");
+  if (world.isSet()) {
+    if (s.world_yaml.empty())
+      throw std::invalid_argument("--world: the scenario has no procedural: block");
+    std::ofstream(world.getValue()) << s.world_yaml;
+  }
+  std::vector<Eigen::Vector3d> path;
 
-  dynobj::sim::SequenceWriter writer(out.getValue(), s);
+  dynobj::sim::SequenceWriter writer(out.getValue(), s, compression.getValue());
   const bool tty = isatty(STDERR_FILENO) && !quiet.isSet();
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t points = 0, dynamic = 0;
@@ -69,6 +90,10 @@ int run(int argc, char** argv) {
       dynobj::core::writePng(out.getValue() + "/" + s.name + ".preview.png",
                              dynobj::core::scaleRows(img, 2));
     }
+    path.push_back(sweep.sensor_pose.translation());
+    if (k == topview.getValue())
+      dynobj::core::writePng(out.getValue() + "/" + s.name + ".topview.png",
+                             dynobj::sim::topView(sweep, path));
     if (tty)
       std::cerr << "\r[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames
                 << std::flush;

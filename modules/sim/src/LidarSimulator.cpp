@@ -6,12 +6,20 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
+
+#include "PartOps.h"
 
 namespace dynobj::sim {
+
+using detail::intersectPart;
+using detail::placed;
+using detail::swayed;
 
 struct LidarSimulator::Posed {
   Part part;  ///< in world coordinates
   int actor = -1;
+  std::uint32_t uid = 0;   ///< index in the posed world (keys the random draws of foliage)
   Eigen::Vector3d center;  ///< bounding sphere
   double radius = 0;
 };
@@ -27,25 +35,6 @@ double rangeGain(double r, double near_range) {
   return (1.0 - std::exp(-q * q)) / (1.0 + std::pow(r / 60.0, 4));
 }
 
-Part placed(const Part& p, const Pose2& pose) {
-  Part out = p;
-  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
-  if (p.kind == Part::Kind::Box) {
-    const Eigen::Vector3d& l = p.box.center;
-    out.box.center = {pose.x + c * l.x() - s * l.y(), pose.y + s * l.x() + c * l.y(), l.z()};
-    out.box.yaw = p.box.yaw + pose.yaw;
-  } else {
-    const Eigen::Vector2d& l = p.cylinder.center;
-    out.cylinder.center = {pose.x + c * l.x() - s * l.y(), pose.y + s * l.x() + c * l.y()};
-  }
-  return out;
-}
-
-bool intersectPart(const Part& p, const Ray& ray, double t_max, Hit& hit) {
-  return p.kind == Part::Kind::Box ? intersect(p.box, ray, t_max, hit)
-                                   : intersect(p.cylinder, ray, t_max, hit);
-}
-
 /// Does the azimuth interval [a - h, a + h] contain the interval [lo, hi] partially?
 bool overlaps(double a, double h, double lo, double hi) {
   if (h >= M_PI) return true;
@@ -59,6 +48,12 @@ bool overlaps(double a, double h, double lo, double hi) {
 LidarSimulator::LidarSimulator(Scenario scenario) : s_(std::move(scenario)) {
   s_.sensor.validate();
   row_elev_ = s_.sensor.rowElevations();
+  if (!s_.beam_elevation_error.empty() && s_.beam_elevation_error.size() != row_elev_.size())
+    throw std::invalid_argument("beam_elevation_error: one entry per sensor row expected");
+  if (!s_.beam_azimuth_error.empty() && s_.beam_azimuth_error.size() != row_elev_.size())
+    throw std::invalid_argument("beam_azimuth_error: one entry per sensor row expected");
+  for (std::size_t r = 0; r < s_.beam_elevation_error.size(); r++)
+    row_elev_[r] += s_.beam_elevation_error[r];
 }
 
 std::int64_t LidarSimulator::timestampNs(int index) const {
@@ -88,13 +83,11 @@ void LidarSimulator::poseWorld(double t, std::vector<Posed>& out) const {
     Posed q;
     q.part = p;
     q.actor = actor;
-    if (p.kind == Part::Kind::Box)
-      boundingSphere(p.box, q.center, q.radius);
-    else
-      boundingSphere(p.cylinder, q.center, q.radius);
+    q.uid = static_cast<std::uint32_t>(out.size());
+    detail::boundingSphere(p, q.center, q.radius);
     out.push_back(q);
   };
-  for (const Part& p : s_.statics) add(p, -1);
+  for (const Part& p : s_.statics) add(swayed(p, t, static_cast<std::uint32_t>(out.size())), -1);
   for (const Actor& a : s_.actors) {
     const Pose2 pose = a.track.at(t);
     for (const Part& p : a.parts) add(placed(p, pose), a.id);
@@ -114,6 +107,9 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
   sw.dynamic = cv::Mat_<std::uint8_t>(H, W, std::uint8_t{0});
 
   std::mt19937 rng(s_.seed * 1000003u + static_cast<std::uint32_t>(index));
+  std::uint64_t sweep_state = (static_cast<std::uint64_t>(s_.seed) << 32) ^
+                              static_cast<std::uint64_t>(static_cast<std::uint32_t>(index));
+  const std::uint64_t sweep_key = splitMix64(sweep_state);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
 
@@ -156,9 +152,17 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
       const double ca = std::cos(az), sa = std::sin(az);
       for (int r = 0; r < H; r++) {
         const double el = row_elev_[static_cast<std::size_t>(r)];
-        const Eigen::Vector3d ds(std::cos(el) * ca, std::cos(el) * sa, std::sin(el));
+        double cb = ca, sb = sa;  // this beam's azimuth: the column's, plus the unit's error
+        if (!s_.beam_azimuth_error.empty()) {
+          const double a = az + s_.beam_azimuth_error[static_cast<std::size_t>(r)];
+          cb = std::cos(a);
+          sb = std::sin(a);
+        }
+        const Eigen::Vector3d ds(std::cos(el) * cb, std::cos(el) * sb, std::sin(el));
         ray.dir = R * ds;
         Hit hit, best;
+        const std::uint64_t pixel_key =
+            sweep_key ^ (static_cast<std::uint64_t>(r * W + c) * 0xD6E8FEB86659FD93ULL);
         double t_max = sm.max_range;
         const Material* mat = nullptr;
         int actor = -1;
@@ -168,7 +172,7 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
           mat = &s_.floor_material;
         }
         for (const Posed* p : cand)
-          if (intersectPart(p->part, ray, t_max, hit)) {
+          if (intersectPart(p->part, ray, t_max, pixel_key, p->uid, hit)) {
             best = hit;
             t_max = hit.t;
             mat = &p->part.material;
@@ -176,7 +180,7 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
           }
         if (!mat || best.t < sm.min_range) continue;
         const double cosi = std::abs(best.normal.dot(ray.dir));
-        const double refl = reflectivity(*mat, best.uv);
+        const double refl = reflectivity(*mat, best.uv) * best.gain;
         const double expected = s_.intensity_gain * refl * (0.3 + 0.7 * cosi) *
                                 rangeGain(best.t, s_.intensity_near_range);
         if (uni(rng) < s_.dropout) continue;                    // random no-return
@@ -184,9 +188,15 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
         if (expected < 3.0) continue;                           // too weak to detect
         const double rng_m = best.t + s_.range_sigma * gauss(rng);
         if (rng_m <= sm.min_range || rng_m > sm.max_range) continue;
-        const double inten =
-            std::max(0.0, std::round(expected * (1.0 + s_.intensity_noise * gauss(rng)) +
-                                     std::sqrt(expected) * 0.5 * gauss(rng)));
+        double inten = 0;
+        if (s_.intensity_model == IntensityModel::Ouster) {
+          inten = std::max(0.0, std::round(expected * (1.0 + s_.intensity_noise * gauss(rng)) +
+                                           std::sqrt(expected) * 0.5 * gauss(rng)));
+        } else {  // Velodyne calibrated reflectivity: 100 = white diffuse, range-compensated
+          const double v = 100.0 * refl * (0.4 + 0.6 * cosi);
+          inten = std::clamp(std::round(v * (1.0 + s_.intensity_noise * gauss(rng)) + gauss(rng)),
+                             0.0, 255.0);
+        }
         const Eigen::Vector3d p = ds * rng_m;
         cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
                         static_cast<float>(p.z()), static_cast<float>(inten),

@@ -4,14 +4,18 @@
 #include <dynobj/core/AtomicFile.h>
 #include <dynobj/mrpt/RangeScanLayout.h>
 #include <dynobj/mrpt/TimeConversion.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <stdexcept>
 
 namespace dynobj::sim {
 namespace {
@@ -21,16 +25,41 @@ namespace {
   return {T.translation().x(), T.translation().y(), std::atan2(R(1, 0), R(0, 0))};
 }
 
+/// The sweep as an unordered cloud, KITTI-style: laser by laser (in the preset's laser-id order),
+/// each laser one revolution in firing order (the head turns clockwise from behind: column W-1
+/// first); remission = intensity / `full_scale`, clipped to [0, 1].
+::mrpt::obs::CObservationPointCloud pointCloud(const Scenario& s, const core::LidarFrame& f) {
+  ::mrpt::obs::CObservationPointCloud obs;
+  auto pc = std::make_shared<::mrpt::maps::CPointsMapXYZI>();
+  pc->reserve(f.validCount());
+  const double full_scale =
+      s.intensity_model == IntensityModel::Velodyne ? 100.0 : s.intensity_gain;
+  for (const int r : s.sensor.laserToRow())  // laser ids in order, each its image row
+    for (int c = f.cols() - 1; c >= 0; c--) {
+      if (!f.isValid(r, c)) continue;
+      const cv::Vec3f& p = f.xyz(r, c);
+      pc->insertPointFast(p[0], p[1], p[2]);
+      pc->setPointIntensity(
+          pc->size() - 1, static_cast<float>(std::clamp(f.intensity(r, c) / full_scale, 0.0, 1.0)));
+    }
+  obs.pointcloud = pc;
+  return obs;
+}
+
 }  // namespace
 
-SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario)
+SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario,
+                               int compression)
     : s_(scenario), base_(out_dir + "/" + scenario.name), odo_rng_(scenario.seed ^ 0x5EEDu) {
+  if (compression < 0 || compression > 9)
+    throw std::invalid_argument("rawlog compression must be 0..9, got " +
+                                std::to_string(compression));
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
   rawlog_ = std::make_unique<::mrpt::io::CFileGZOutputStream>();
-  if (!rawlog_->open(core::partialName(rawlogPath())))
+  if (!rawlog_->open(core::partialName(rawlogPath()), compression))
     throw std::runtime_error("cannot write '" + core::partialName(rawlogPath()) + "'");
   labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
   instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows,
@@ -72,12 +101,21 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
     odo.odometry = odometry_;
     arch << odo;
   }
-  ::mrpt::obs::CObservation3DRangeScan scan;
-  dynobj::mrpt::frameToRangeScan(sw.frame, scan);
-  scan.sensorLabel = s_.sensor_label;
-  scan.timestamp = stamp;
-  scan.sensorPose = ::mrpt::poses::CPose3D(s_.mount.x(), s_.mount.y(), s_.mount.z(), 0, 0, 0);
-  arch << scan;
+  const ::mrpt::poses::CPose3D mount(s_.mount.x(), s_.mount.y(), s_.mount.z(), 0, 0, 0);
+  if (s_.output == OutputFormat::PointCloud) {
+    ::mrpt::obs::CObservationPointCloud cloud = pointCloud(s_, sw.frame);
+    cloud.sensorLabel = s_.sensor_label;
+    cloud.timestamp = stamp;
+    cloud.sensorPose = mount;
+    arch << cloud;
+  } else {
+    ::mrpt::obs::CObservation3DRangeScan scan;
+    dynobj::mrpt::frameToRangeScan(sw.frame, scan);
+    scan.sensorLabel = s_.sensor_label;
+    scan.timestamp = stamp;
+    scan.sensorPose = mount;
+    arch << scan;
+  }
 
   labels_->write(sw.timestamp_ns, core::pixelsOfMask(sw.dynamic));
   std::vector<std::uint32_t> pixels;  // every pixel that hit an actor, moving or not

@@ -4,6 +4,7 @@
 #include <dynobj/mrpt/RawlogReader.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
+#include <dynobj/sim/TopView.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/system/filesystem.h>
@@ -11,37 +12,11 @@
 #include <cmath>
 #include <fstream>
 
+#include "SimTestUtil.h"
+
 using namespace dynobj;
 using namespace dynobj::sim;
-
-namespace {
-
-constexpr double kDeg = M_PI / 180.0;
-
-/// 8 beams from +14 to -14 deg (4 deg apart), 64 columns, written to a temporary preset.
-std::string tinySensorFile() {
-  const std::string path = ::mrpt::system::getTempFileName() + "_tiny.ini";
-  std::ofstream(path) << "[sensor]\nmodel = tiny\nrows = 8\ncols = 64\nelevation_top = 14\n"
-                         "elevation_bottom = -14\nmin_range = 0.2\nmax_range = 80\n";
-  return path;
-}
-
-/// A noiseless scenario: sensor at 1 m height, standing at the origin looking along +X.
-std::string base(const std::string& extra,
-                 const std::string& platform = "{trajectory: {type: stationary, at: [0, 0]}}") {
-  return "name: t\nframes: 10\nsensor: " + tinySensorFile() +
-         "\nmount: [0, 0, 1.0]\nnoise: {range_sigma: 0, dropout: 0, grazing_cos: 0}\n"
-         "odometry: {enabled: false}\n"
-         "floor: {size: [100, 100]}\n"
-         "platform: " +
-         platform + "\n" + extra;
-}
-
-Scenario load(const std::string& text) {
-  return Scenario::fromYamlText(text, DYNOBJ_SHARE_DIR, {}, "test.yaml");
-}
-
-}  // namespace
+using namespace dynobj::sim::test;
 
 TEST(LidarSimulator, FloorAtKnownDistance) {
   const LidarSimulator sim(load(base("")));
@@ -179,4 +154,29 @@ TEST(LidarSimulator, MotionDistortionShiftsColumnsOnlyWhenMoving) {
   const auto still_dist = run("{trajectory: {type: stationary, at: [0, 0]}}", true);
   EXPECT_EQ(cv::norm(still_plain.frame.range, still_dist.frame.range, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(moving_plain.frame.range, moving_dist.frame.range, cv::NORM_INF), 0.05);
+}
+
+TEST(LidarSimulator, TopViewShowsMovingActorsInRed) {
+  const LidarSimulator sim(load(base(
+      "actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, "
+      "2]], speed: 1}}\n  - {class: pedestrian, trajectory: {type: stationary, at: [0, 3]}}\n")));
+  const auto sw = sim.simulate(3);
+  const cv::Mat img = topView(sw, {sw.sensor_pose.translation()}, 0.1, 10.0);
+  ASSERT_EQ(img.rows, 200);
+  // Sensor at the centre (100, 100), 0.1 m per pixel, +y up: the walker red, the stander blue.
+  ASSERT_GT(sw.actors[0].points, 0);
+  ASSERT_GT(sw.actors[1].points, 0);
+  auto colourAt = [&](const Eigen::Vector3d& p) {
+    const int x = static_cast<int>(100 + p.x() * 10), y = static_cast<int>(100 - p.y() * 10);
+    cv::Vec3b best(0, 0, 0);
+    for (int dy = -5; dy <= 5; dy++)
+      for (int dx = -5; dx <= 5; dx++) {
+        const cv::Vec3b v = img.at<cv::Vec3b>(y + dy, x + dx);
+        if (v[2] > 200 && v[0] < 100) return std::string("red");
+        if (v[0] > 200 && v[2] < 100) best = v;
+      }
+    return std::string(best[0] > 200 ? "blue" : "none");
+  };
+  EXPECT_EQ(colourAt(sw.actors[0].position), "red");
+  EXPECT_EQ(colourAt(sw.actors[1].position), "blue");
 }

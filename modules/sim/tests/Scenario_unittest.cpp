@@ -66,13 +66,32 @@ TEST(Scenario, ErrorsNameFileAndKey) {
                     "at: [0,0]}}\n")
                 .find("none.ini"),
             std::string::npos);
-  EXPECT_NE(errorOf(kMinimal, {{"noise.range_sigma", "1"}}).find("no key 'noise'"),
+  // An override may create a missing block; a misspelt one is still an unknown key.
+  EXPECT_EQ(errorOf(kMinimal, {{"noise.range_sigma", "1"}}), "");
+  EXPECT_NE(errorOf(kMinimal, {{"nois.range_sigma", "1"}}).find("unknown key 'nois'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "intensity: {model: lidar}\n").find("intensity.model: unknown"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "output: pcd\n").find("output: unknown output 'pcd'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "static:\n  - {tree: {center: [0, 0], density: -1}}\n")
+                .find("static[0].tree.density: must be > 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "static:\n  - {fence: {from: [0, 0], to: [3, 0], style: wood}}\n")
+                .find("static[0].fence.style: unknown fence style 'wood'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "static:\n  - {bush: {center: [0, 0], size: [1, 1]}}\n")
+                .find("static[0].bush.size: expected 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kMinimal + "sensor_unit: {elevation_sigma_deg: -0.1}\n")
+                .find("sensor_unit.elevation_sigma_deg: must be >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf("- a\n- b\n").find("not a map of key: value"), std::string::npos);
 }
 
 TEST(Scenario, EveryShippedScenarioLoads) {
-  for (const char* name : {"hall", "corridor", "crossing", "street", "static"}) {
+  for (const char* name : {"hall", "corridor", "crossing", "street", "static", "plaza", "parking",
+                           "warehouse", "corner", "crowd"}) {
     SCOPED_TRACE(name);
     const std::string path = std::string(DYNOBJ_SHARE_DIR) + "/scenarios/" + name + ".yaml";
     Scenario s;
@@ -85,4 +104,40 @@ TEST(Scenario, EveryShippedScenarioLoads) {
       EXPECT_FALSE(s.actors.empty());
     }
   }
+}
+
+TEST(Scenario, OverrideCreatesMissingBlocks) {
+  const Scenario s = Scenario::fromYamlText(
+      kMinimal, DYNOBJ_SHARE_DIR, {{"intensity.model", "velodyne"}, {"noise.dropout", "0.01"}},
+      "t.yaml");
+  EXPECT_EQ(s.intensity_model, IntensityModel::Velodyne);
+  EXPECT_DOUBLE_EQ(s.dropout, 0.01);
+  EXPECT_DOUBLE_EQ(s.range_sigma, 0.02);  // the rest of the block keeps its defaults
+}
+
+TEST(Scenario, TreesBushesAndFences) {
+  const Scenario s = Scenario::fromYamlText(
+      kMinimal +
+          "static:\n"
+          "  - {tree: {center: [3, 4], height: 8, crown_radius: 2, crown_height: 4, density: "
+          "1.5}}\n"
+          "  - {bush: {center: [1, 1], size: [2, 1, 1.2], shape: box}}\n"
+          "  - {fence: {from: [0, 5], to: [10, 5], style: railing, height: 1.0}}\n",
+      DYNOBJ_SHARE_DIR, {}, "t.yaml");
+  ASSERT_EQ(s.statics.size(), 4u);  // trunk + crown, bush, fence
+  EXPECT_EQ(s.statics[0].kind, Part::Kind::Cylinder);
+  EXPECT_DOUBLE_EQ(s.statics[0].cylinder.z1, 6.0);  // into the crown's centre
+  EXPECT_EQ(s.statics[1].kind, Part::Kind::Porous);
+  EXPECT_TRUE(s.statics[1].porous.ellipsoid);
+  EXPECT_DOUBLE_EQ(s.statics[1].porous.center.z(), 6.0);
+  EXPECT_DOUBLE_EQ(s.statics[1].porous.half.x(), 2.0);
+  EXPECT_DOUBLE_EQ(s.statics[1].porous.half.z(), 2.0);
+  EXPECT_DOUBLE_EQ(s.statics[1].porous.density, 1.5);
+  EXPECT_GT(s.statics[1].sway, 0.0);
+  EXPECT_FALSE(s.statics[2].porous.ellipsoid);
+  EXPECT_DOUBLE_EQ(s.statics[2].porous.center.z(), 0.6);  // standing on the ground
+  EXPECT_EQ(s.statics[3].kind, Part::Kind::Fence);
+  EXPECT_DOUBLE_EQ(s.statics[3].fence.bar_spacing, 1.5);  // railing: posts 1.5 m apart
+  EXPECT_EQ(s.statics[3].fence.rail_count, 2);
+  EXPECT_DOUBLE_EQ(s.statics[3].fence.rails[0], 0.5);
 }

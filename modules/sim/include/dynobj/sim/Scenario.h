@@ -27,12 +27,24 @@ class ScenarioError : public std::runtime_error {
 enum class ActorClass { Pedestrian, Cyclist, Car };
 const char* toString(ActorClass c);
 
-/// One rigid part of a static object or an actor, in its owner's frame (actors) or the world.
+/// What the intensity channel holds: Ouster signal (photon counts, range-dependent, near-field
+/// suppression) or Velodyne calibrated reflectivity (0-255, 0-100 for diffuse surfaces).
+enum class IntensityModel { Ouster, Velodyne };
+/// How sweeps are written: organized CObservation3DRangeScan, or an unordered
+/// CObservationPointCloud (x y z + remission 0-1) laser by laser in firing order, KITTI-style.
+enum class OutputFormat { RangeScan, PointCloud };
+
+/// One part of a static object or an actor, in its owner's frame (actors) or the world. Actors
+/// are made of boxes and cylinders only; foliage and fences are static clutter.
 struct Part {
-  enum class Kind { Box, Cylinder } kind = Kind::Box;
+  enum class Kind { Box, Cylinder, Porous, Fence } kind = Kind::Box;
   Box box;
   Cylinder cylinder;
+  Porous porous;
+  Fence fence;
   Material material;
+  double sway = 0;       ///< [m] amplitude of the horizontal sway of foliage (wind)
+  double sway_hz = 0.3;  ///< [Hz] its frequency
 };
 
 struct Actor {
@@ -56,10 +68,15 @@ struct Scenario {
   double intensity_gain = 700;        ///< signal of a white (reflectivity 1) wall at 10-50 m
   double intensity_noise = 0.08;      ///< relative signal noise
   double intensity_near_range = 1.5;  ///< [m] signal is suppressed below about this range
-  bool motion_distortion = false;     ///< columns fired over the sweep while everything moves
-  double moving_speed = 0.2;          ///< [m/s] an actor faster than this is "dynamic"
-  bool odometry = true;               ///< also write CObservationOdometry
-  double odometry_sigma_xy = 0.01;    ///< [m per sweep]
+  IntensityModel intensity_model = IntensityModel::Ouster;
+  OutputFormat output = OutputFormat::RangeScan;
+  /// This unit's beams: per image row, the error of its elevation and azimuth from the preset's
+  /// nominal table [rad], drawn from the seed (`sensor_unit:`); empty = a perfect unit.
+  std::vector<double> beam_elevation_error, beam_azimuth_error;
+  bool motion_distortion = false;   ///< columns fired over the sweep while everything moves
+  double moving_speed = 0.2;        ///< [m/s] an actor faster than this is "dynamic"
+  bool odometry = true;             ///< also write CObservationOdometry
+  double odometry_sigma_xy = 0.01;  ///< [m per sweep]
   double odometry_sigma_yaw = 0.2 * M_PI / 180;  ///< [rad per sweep]
 
   Floor floor;
@@ -72,6 +89,10 @@ struct Scenario {
   double bob_roll = 0.0;    ///< [rad] amplitudes
   double bob_pitch = 0.0;
   double bob_hz = 2.0;  ///< step frequency
+
+  /// The world a `procedural:` block generated (YAML: floor, static, actors, platform), empty
+  /// for hand-written scenes. Writing it out freezes that world into a plain scenario.
+  std::string world_yaml;
 
   double period() const { return 1.0 / sensor.frequency; }
   double duration() const { return frames * period(); }
