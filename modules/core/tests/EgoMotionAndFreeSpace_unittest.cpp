@@ -49,19 +49,23 @@ TEST(EgoMotionEstimator, FeaturelessScenesFailCleanly) {
   EXPECT_LT(em.inliers, EgoMotionParams().min_inliers);
 }
 
-TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
-  const auto s = dynobj::test::smallSensor(32, 512);
-  Scene before, after;
-  before.posts = {{5, 0, 0.3, 1.8}};                   // a post that stays
-  after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};  // and one that arrived at (4, 3)
-  const LidarFrame f0 = dynobj::test::render(before, s, true, 1);
-  const LidarFrame f1 = dynobj::test::render(after, s, true, 2);
+namespace {
+
+/// Two frames of a still sensor (the scene before and after), remembered and chained, and the
+/// points of the current frame within 0.35 m of a post's axis: a post's cluster.
+struct TwoFrames {
+  LidarFrame f0, f1;
   FrameChain chain;
-  chain.push(0, Eigen::Isometry3d::Identity(), true);
-  chain.push(1, Eigen::Isometry3d::Identity(), true);
   FreeSpaceCheck check;
-  check.remember(0, f0);
-  auto clusterAt = [&](double x, double y) {
+  TwoFrames(const Scene& before, const Scene& after) {
+    const auto s = dynobj::test::smallSensor(32, 512);
+    f0 = dynobj::test::render(before, s, true, 1);
+    f1 = dynobj::test::render(after, s, true, 2);
+    chain.push(0, Eigen::Isometry3d::Identity(), true);
+    chain.push(1, Eigen::Isometry3d::Identity(), true);
+    check.remember(0, f0);
+  }
+  Cluster clusterAt(double x, double y) const {
     Cluster c;
     for (int r = 0; r < f1.rows(); r++)
       for (int col = 0; col < f1.cols(); col++) {
@@ -70,9 +74,21 @@ TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
           c.pixels.push_back(r * f1.cols() + col);
       }
     return c;
-  };
-  const auto arrived = check.evidence(f1, 1, clusterAt(4, 3), 0, chain);
-  const auto stayed = check.evidence(f1, 1, clusterAt(5, 0), 0, chain);
+  }
+};
+
+}  // namespace
+
+TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
+  Scene before, after;
+  before.posts = {{5, 0, 0.3, 1.8}};                   // a post that stays
+  after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};  // and one that arrived at (4, 3)
+  const TwoFrames t(before, after);
+  const LidarFrame& f1 = t.f1;
+  const FrameChain& chain = t.chain;
+  const FreeSpaceCheck& check = t.check;
+  const auto arrived = check.evidence(f1, 1, t.clusterAt(4, 3), 0, chain);
+  const auto stayed = check.evidence(f1, 1, t.clusterAt(5, 0), 0, chain);
   EXPECT_GT(arrived.free, 5);
   EXPECT_EQ(arrived.occupied, 0);
   EXPECT_TRUE(arrived.supportsMotion(check.params()));
@@ -80,30 +96,20 @@ TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
   EXPECT_EQ(stayed.free, 0);
   EXPECT_FALSE(stayed.supportsMotion(check.params()));
   // Unknown past frame: no verdict, the candidate is kept.
-  EXPECT_TRUE(check.evidence(f1, 1, clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
+  EXPECT_TRUE(check.evidence(f1, 1, t.clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
 }
 
 TEST(FreeSpaceCheck, ObjectMovingAwayProvesMotionByTheSpaceItLeft) {
   // A post 4 m ahead moves 1 m straight away from the sensor. In the old frame, the space it
   // occupies now was hidden behind it (no verdict); now, the space it left is seen through.
-  const auto s = dynobj::test::smallSensor(32, 512);
   Scene before, after;
   before.posts = {{4, 0, 0.3, 1.8}};
   after.posts = {{5, 0, 0.3, 1.8}};
-  const LidarFrame f0 = dynobj::test::render(before, s, true, 1);
-  const LidarFrame f1 = dynobj::test::render(after, s, true, 2);
-  FrameChain chain;
-  chain.push(0, Eigen::Isometry3d::Identity(), true);
-  chain.push(1, Eigen::Isometry3d::Identity(), true);
-  FreeSpaceCheck check;
-  check.remember(0, f0);
-  Cluster c;
-  for (int r = 0; r < f1.rows(); r++)
-    for (int col = 0; col < f1.cols(); col++) {
-      const cv::Vec3f& p = f1.xyz(r, col);
-      if (f1.isValid(r, col) && std::hypot(p[0] - 5, p[1]) < 0.35 && p[2] > -0.7f)
-        c.pixels.push_back(r * f1.cols() + col);
-    }
+  const TwoFrames t(before, after);
+  const LidarFrame& f1 = t.f1;
+  const FrameChain& chain = t.chain;
+  const FreeSpaceCheck& check = t.check;
+  const Cluster c = t.clusterAt(5, 0);
   ASSERT_GT(c.pixels.size(), 5u);
   const auto hidden = check.evidence(f1, 1, c, 0, chain);
   EXPECT_EQ(hidden.free + hidden.occupied, 0);  // hidden then: no verdict either way

@@ -37,6 +37,7 @@ void MapConsistency::add(const core::LidarFrame& f, const Eigen::Isometry3d& pos
   if (!proj_) proj_.emplace(f.sensor);
   Sweep s;
   s.pose = pose;
+  s.sensor_from_world = pose.inverse();
   s.range = f.range.clone();
   for (int r = 0; r < f.rows(); r++)
     for (int c = 0; c < f.cols(); c++) {
@@ -56,7 +57,7 @@ MapConsistency::Class MapConsistency::classify(const Eigen::Vector3f& world,
   int occupied = 0, views = 0;
   for (std::size_t i = own > n ? own - n : 0; i < std::min(sweeps_.size(), own + n + 1); i++) {
     if (i + 1 >= own && i <= own + 1) continue;  // itself and its direct neighbours
-    const Eigen::Vector3d q = sweeps_[i].pose.inverse() * world.cast<double>();
+    const Eigen::Vector3d q = sweeps_[i].sensor_from_world * world.cast<double>();
     const double d = q.norm();
     int row = -1, col = -1;
     if (d > p_.max_range || d < 1 || !proj.pixelOf(q.x(), q.y(), q.z(), row, col)) continue;

@@ -68,6 +68,7 @@ class MapConsistency {
 
   struct Sweep {
     Eigen::Isometry3d pose;
+    Eigen::Isometry3d sensor_from_world;  ///< pose.inverse(), asked once per point and view
     cv::Mat_<float> range;
     std::vector<Eigen::Vector3f> points;  ///< world frame
     std::vector<std::uint8_t> flagged;
