@@ -8,6 +8,7 @@
 #include <dynobj/core/TimingStats.h>
 #include <dynobj/core/TumFile.h>
 #include <dynobj/eval/EgoMotionCheck.h>
+#include <dynobj/eval/MapConsistency.h>
 #include <dynobj/mrpt/LidarObservationStream.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -57,6 +58,11 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> overlays("", "overlay-dir",
                                         "Write intensity images with dynamic pixels in red", false,
                                         "", "dir", cmd);
+  TCLAP::ValueArg<std::string> consistency(
+      "", "consistency",
+      "Label-free check against the whole sequence (no ground truth): print how many flagged "
+      "points lie where the other sweeps see a static surface, and write a top view (PNG)",
+      false, "", "map.png", cmd);
   TCLAP::SwitchArg verbose("v", "verbose", "One line per frame", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
@@ -79,6 +85,9 @@ int run(int argc, char** argv) {
   dynobj::core::DynamicObjectDetector detector(params);
   std::optional<dynobj::eval::EgoMotionCheck> ego_check;
   if (check_ego.isSet()) ego_check.emplace();
+  std::optional<dynobj::eval::MapConsistency> map_check;
+  if (consistency.isSet()) map_check.emplace();
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  // accumulated ego-motion
   std::unique_ptr<dynobj::core::LabelFileWriter> writer;
   dynobj::mrpt::LidarObservationStream::Item item;
   dynobj::core::Confusion total, seeds_total;
@@ -104,6 +113,10 @@ int run(int argc, char** argv) {
     timing.add(t);
     if (!r.ego_motion.ok && frames > 0) ego_failed++;
     if (ego_check) ego_check->add(f, r.ego_motion);
+    if (map_check) {
+      if (frames > 0) sensor_pose = sensor_pose * r.ego_motion.motion;
+      map_check->add(f, sensor_pose, r.dynamic);
+    }
     dynobj::core::Confusion c;
     if (truth) {
       if (frames >= truth->sweeps.size() || truth->sweeps[frames].timestamp_ns != f.timestamp_ns)
@@ -165,6 +178,10 @@ int run(int argc, char** argv) {
   timing.print(std::cout);
   std::cout.flush();
   if (ego_check) std::printf("  ICP check: %s\n", ego_check->summary().toString().c_str());
+  if (map_check) {
+    std::printf("  consistency: %s\n", map_check->evaluate().toString().c_str());
+    dynobj::core::writePng(consistency.getValue(), map_check->topView());
+  }
   if (truth)
     std::printf(
         "  precision %s  recall %s  IoU %s  F1 %s  (TP %ld FP %ld FN %ld; static points flagged "

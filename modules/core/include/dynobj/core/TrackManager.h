@@ -23,8 +23,9 @@ struct TrackingParams : public StageParams {
   int confirm_frames = 2;  ///< consecutive moving decisions to become dynamic
   int release_frames = 4;  ///< consecutive static decisions to become static again
   int settled_frames = 10;  ///< a track judged static this many times in a row is settled ...
-  int settled_confirm_frames = 4;  ///< ... and needs this many moving decisions instead: trees,
-                                   ///< poles and parked cars flicker; a real start keeps moving
+  int settled_confirm_frames = 2;  ///< ... and needs this many moving decisions instead (trees,
+                                   ///< poles and parked cars flicker; a real start keeps moving).
+                                   ///< Default = confirm_frames: off (docs/algorithm.md §7c)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
