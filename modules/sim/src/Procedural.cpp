@@ -187,23 +187,40 @@ void WorldBuilder::stander(const Eigen::Vector2d& at) {
   occupied_.push_back({at, 0.5});
 }
 
-void WorldBuilder::mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts,
+bool WorldBuilder::mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts,
                          double speed, bool loop, double start, double pause) {
+  if (cls != "pedestrian" && platform_radius_ > 0) {  // vehicles keep clear of the sensor
+    const double hl = cls == "car" ? 2.2 : 0.85, hw = cls == "car" ? 0.9 : 0.3;  // half footprint
+    const PoseTrack track = PoseTrack::waypoints(pts, speed, pause, loop, start, duration_);
+    for (double t = 0; t <= duration_; t += 0.05) {
+      const Pose2 a = track.at(t), p = platform_track_.at(t);
+      const double dx = p.x - a.x, dy = p.y - a.y, c = std::cos(a.yaw), s = std::sin(a.yaw);
+      const double lx = std::max(std::abs(c * dx + s * dy) - hl, 0.0);
+      const double ly = std::max(std::abs(-s * dx + c * dy) - hw, 0.0);
+      if (std::hypot(lx, ly) < platform_radius_) return false;
+    }
+  }
   actors_ << "  - {class: " << cls << ", trajectory: {type: waypoints, speed: " << num(speed)
           << ", pause: " << num(pause) << ", loop: " << (loop ? "true" : "false")
           << ", start: " << num(start) << ", points: [";
   for (std::size_t i = 0; i < pts.size(); i++) actors_ << (i ? ", " : "") << point(pts[i]);
   actors_ << "]}}\n";
+  return true;
 }
 
-void WorldBuilder::platform(const std::vector<Eigen::Vector2d>& pts, double speed, bool loop) {
+void WorldBuilder::platform(const std::vector<Eigen::Vector2d>& pts, double speed, bool loop,
+                            double radius) {
+  platform_track_ = PoseTrack::waypoints(pts, speed, 0.0, loop, 0.0, duration_);
+  platform_radius_ = radius;
   platform_ << "platform:\n  trajectory: {type: waypoints, speed: " << num(speed)
             << ", loop: " << (loop ? "true" : "false") << ", points: [";
   for (std::size_t i = 0; i < pts.size(); i++) platform_ << (i ? ", " : "") << point(pts[i]);
   platform_ << "]}\n";
 }
 
-void WorldBuilder::platformStationary(const Eigen::Vector2d& at, double yaw_deg) {
+void WorldBuilder::platformStationary(const Eigen::Vector2d& at, double yaw_deg, double radius) {
+  platform_track_ = PoseTrack::stationary({at.x(), at.y(), yaw_deg * M_PI / 180});
+  platform_radius_ = radius;
   platform_ << "platform:\n  trajectory: {type: stationary, at: " << point(at)
             << ", yaw_deg: " << num(yaw_deg) << "}\n";
 }

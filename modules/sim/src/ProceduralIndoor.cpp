@@ -13,10 +13,13 @@ using V2 = Eigen::Vector2d;
 
 void walls(WorldBuilder& w, double sx, double sy, double h) {
   const std::vector<std::string> wall_patterns{"posters", "posters", "checker", "stripes", "noise"};
-  w.box(0, sy / 2, sx + 0.4, 0.4, h, 0, w.material(0.35, 0.6, wall_patterns, 0.8, 1.6));
-  w.box(0, -sy / 2, sx + 0.4, 0.4, h, 0, w.material(0.35, 0.6, wall_patterns, 0.8, 1.6));
-  w.box(sx / 2, 0, 0.4, sy, h, 0, w.material(0.35, 0.6, wall_patterns, 0.8, 1.6));
-  w.box(-sx / 2, 0, 0.4, sy, h, 0, w.material(0.35, 0.6, wall_patterns, 0.8, 1.6));
+  for (int k = 0; k < 4; k++) {
+    const std::string m = w.material(0.35, 0.6, wall_patterns, 0.8, 1.6);
+    if (k < 2)
+      w.box(0, (k ? -1 : 1) * sy / 2, sx + 0.4, 0.4, h, 0, m);
+    else
+      w.box((k == 2 ? 1 : -1) * sx / 2, 0, 0.4, sy, h, 0, m);
+  }
 }
 
 /// Platform route: a loop `inset` metres inside the walls (random corner and direction), or the
@@ -25,8 +28,9 @@ void roomRoute(WorldBuilder& w, double sx, double sy, double inset, double speed
   const std::string& route = w.spec().route;
   const double ax = sx / 2 - inset, ay = sy / 2 - inset;
   if (route == "stationary") {
-    const V2 at(w.uni(-ax, ax), w.uni(-ay, ay));
-    w.platformStationary(at, w.uni(-180, 180));
+    const V2 at{w.uni(-ax, ax), w.uni(-ay, ay)};
+    const double yaw = w.uni(-180, 180);
+    w.platformStationary(at, yaw);
     w.keepOut({at}, 1.5, false);
     return;
   }
@@ -51,9 +55,11 @@ void roomRoute(WorldBuilder& w, double sx, double sy, double inset, double speed
 void buildRoom(WorldBuilder& w) {
   const V2 size = w.size(22, 40, 14, 28);
   const double sx = size.x(), sy = size.y(), h = w.uni(4, 7);
-  w.floor(sx + 4, sy + 4, w.uni(0.2, 0.3), "markings", w.uni(1.0, 2.0));
+  const double floor_albedo = w.uni(0.2, 0.3), floor_scale = w.uni(1.0, 2.0);
+  w.floor(sx + 4, sy + 4, floor_albedo, "markings", floor_scale);
   walls(w, sx, sy, h);
-  roomRoute(w, sx, sy, w.uni(3.5, 5.0), w.platformSpeed(1.0));
+  const double inset = w.uni(3.5, 5.0);
+  roomRoute(w, sx, sy, inset, w.platformSpeed(1.0));
   // Pillars on a grid, some missing.
   const double pitch = w.uni(6, 10);
   const std::string pillar = w.material(0.45, 0.7, {"stripes", "checker", "noise"}, 0.3, 0.5);
@@ -72,8 +78,9 @@ void buildRoom(WorldBuilder& w) {
     const double lx = w.uni(0.8, 3.0), ly = w.uni(0.6, 1.5), lz = w.uni(0.6, 2.2);
     const int side = w.uniInt(0, 3);
     const double off = w.uni(0.4, 1.5) + ly / 2;
-    V2 p = side < 2 ? V2(w.uni(-sx / 2 + 2, sx / 2 - 2), (side ? 1 : -1) * (sy / 2 - off))
-                    : V2((side == 2 ? 1 : -1) * (sx / 2 - off), w.uni(-sy / 2 + 2, sy / 2 - 2));
+    const double along = side < 2 ? w.uni(-sx / 2 + 2, sx / 2 - 2) : w.uni(-sy / 2 + 2, sy / 2 - 2);
+    const V2 p = side < 2 ? V2(along, (side ? 1 : -1) * (sy / 2 - off))
+                          : V2((side == 2 ? 1 : -1) * (sx / 2 - off), along);
     const double yaw = (side < 2 ? 0 : 90) + w.uni(-15, 15);
     const std::string m =
         w.material(0.3, 0.7, {"noise", "checker", "stripes", "posters"}, 0.2, 0.5);
@@ -82,13 +89,15 @@ void buildRoom(WorldBuilder& w) {
   for (int k = w.uniInt(2, 5); k > 0; k--) {
     V2 p;
     const std::string m = w.material(0.3, 0.7, {"noise", "checker"}, 0.2, 0.4);
-    if (w.freeSpot(-sx / 2 + 2, -sy / 2 + 2, sx / 2 - 2, sy / 2 - 2, 1.0, p))
-      w.box(p.x(), p.y(), w.uni(0.6, 1.5), w.uni(0.6, 1.5), w.uni(0.5, 1.2), w.uni(0, 90), m);
+    if (!w.freeSpot(-sx / 2 + 2, -sy / 2 + 2, sx / 2 - 2, sy / 2 - 2, 1.0, p)) continue;
+    const double bx = w.uni(0.6, 1.5), by = w.uni(0.6, 1.5), bz = w.uni(0.5, 1.2);
+    w.box(p.x(), p.y(), bx, by, bz, w.uni(0, 90), m);
   }
   for (int k = w.count(w.spec().bushes, 0, 3); k > 0; k--) {  // potted plants
     V2 p;
-    if (w.freeSpot(-sx / 2 + 1.5, -sy / 2 + 1.5, sx / 2 - 1.5, sy / 2 - 1.5, 0.7, p))
-      w.bush(p.x(), p.y(), w.uni(0.6, 1.1), w.uni(0.6, 1.1), w.uni(0.8, 1.6), 0, false);
+    if (!w.freeSpot(-sx / 2 + 1.5, -sy / 2 + 1.5, sx / 2 - 1.5, sy / 2 - 1.5, 0.7, p)) continue;
+    const double bx = w.uni(0.6, 1.1), by = w.uni(0.6, 1.1);
+    w.bush(p.x(), p.y(), bx, by, w.uni(0.8, 1.6), 0, false);
   }
   // People: wandering (some pausing), standing still, standing then walking.
   const int people = w.count(w.spec().pedestrians, std::max(6, static_cast<int>(sx * sy / 60)),
@@ -107,7 +116,8 @@ void buildRoom(WorldBuilder& w) {
 void buildWarehouse(WorldBuilder& w) {
   const V2 size = w.size(30, 50, 22, 36);
   const double sx = size.x(), sy = size.y(), h = w.uni(6, 10);
-  w.floor(sx + 4, sy + 4, w.uni(0.18, 0.28), "markings", w.uni(1.5, 2.5));
+  const double floor_albedo = w.uni(0.18, 0.28), floor_scale = w.uni(1.5, 2.5);
+  w.floor(sx + 4, sy + 4, floor_albedo, "markings", floor_scale);
   walls(w, sx, sy, h);
   const double cross = w.uni(5, 7);  // cross aisles at both ends [m]
   const double side = w.uni(3.5, 4.5);
@@ -145,11 +155,11 @@ void buildWarehouse(WorldBuilder& w) {
     }
   }
   for (int k = w.uniInt(3, 8); k > 0; k--) {  // pallets along the end walls
-    const double x = (w.chance(0.5) ? 1 : -1) * (sx / 2 - w.uni(0.8, 1.5));
-    const double y = w.uni(-sy / 2 + 1.5, sy / 2 - 1.5);
-    if (w.isFree({x, y}, 0.8))
-      w.box(x, y, 1.2, 1.0, w.uni(0.3, 1.6), 0,
-            w.material(0.3, 0.6, {"noise", "stripes"}, 0.2, 0.4));
+    const double east = w.chance(0.5) ? 1 : -1;
+    const double x = east * (sx / 2 - w.uni(0.8, 1.5));
+    const double y = w.uni(-sy / 2 + 1.5, sy / 2 - 1.5), height = w.uni(0.3, 1.6);
+    const std::string m = w.material(0.3, 0.6, {"noise", "stripes"}, 0.2, 0.4);
+    if (w.isFree({x, y}, 0.8)) w.box(x, y, 1.2, 1.0, height, 0, m);
   }
   // Workers: walking up and down aisles (pausing to pick; the platform's aisle more often),
   // wandering the cross and side aisles the platform drives through, standing.
@@ -159,8 +169,9 @@ void buildWarehouse(WorldBuilder& w) {
     const double ay = w.chance(0.3) ? ya : aisles[static_cast<std::size_t>(pick)];
     const int mode = w.uniInt(0, 9);
     if (mode < 4) {
-      w.mover("pedestrian", {{w.uni(x0, 0), ay}, {w.uni(0, x1), ay}}, w.uni(0.7, 1.4), true,
-              w.uni(0, 8), w.uni(0, 4));
+      const std::vector<V2> walk{{w.uni(x0, 0), ay}, {w.uni(0, x1), ay}};
+      const double speed = w.uni(0.7, 1.4), start = w.uni(0, 8);
+      w.mover("pedestrian", walk, speed, true, start, w.uni(0, 4));
     } else if (mode < 7) {
       const double cx = (w.chance(0.5) ? 1 : -1) * xc;
       w.walker({cx - cross / 2 + 1, -sy / 2 + 1.5, cx + cross / 2 - 1, sy / 2 - 1.5}, 0.7, 1.4, 3);
@@ -171,12 +182,16 @@ void buildWarehouse(WorldBuilder& w) {
       w.stander({w.uni(x0, x1), ay});
     }
   }
-  // Forklift-sized vehicles up and down the cross aisles.
-  for (int k = w.count(w.spec().cars, 1, 2); k > 0; k--) {
-    const double cx = (w.chance(0.5) ? 1 : -1) * (xc + w.uni(-1, 1));
-    w.mover("car", {{cx, -sy / 2 + 3.5}, {cx, sy / 2 - 3.5}}, w.uni(1.5, 3.0), true, w.uni(0, 10),
-            w.uni(1, 5));
-  }
+  // Forklift-sized vehicles along the aisles (never into the platform: see mover()).
+  for (int k = w.count(w.spec().cars, 1, 2); k > 0; k--)
+    for (int tries = 0; tries < 10; tries++) {
+      const int pick = w.uniInt(0, static_cast<int>(aisles.size()) - 1);
+      const double ay = aisles[static_cast<std::size_t>(pick)], dir = w.chance(0.5) ? 1 : -1;
+      const double speed = w.uni(1.5, 3.0), start = w.uni(0, 10), pause = w.uni(1, 5);
+      if (w.mover("car", {{dir * (x0 + 2.5), ay}, {-dir * (x0 + 2.5), ay}}, speed, true, start,
+                  pause))
+        break;
+    }
 }
 
 }  // namespace dynobj::sim::detail

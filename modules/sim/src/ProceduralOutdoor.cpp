@@ -23,9 +23,9 @@ void facadeRow(WorldBuilder& w, double a, double b, double y_face, double side, 
     const double len = std::min(w.uni(8, 30), b - x);
     const double mid = x + len / 2;
     if (std::abs(mid) > skip + len / 2 && len > 2) {
-      const double setback = w.uni(0, 1.5), depth = 8;
-      w.box(mid, y_face + side * (setback + depth / 2), len, depth, w.uni(6, 20), 0,
-            w.material(0.3, 0.6, kFacade, 1.5, 2.5));
+      const double setback = w.uni(0, 1.5), depth = 8, height = w.uni(6, 20);
+      const std::string m = w.material(0.3, 0.6, kFacade, 1.5, 2.5);
+      w.box(mid, y_face + side * (setback + depth / 2), len, depth, height, 0, m);
     }
     x += len + (w.chance(0.3) ? w.uni(3, 8) : 0.3);
   }
@@ -39,13 +39,13 @@ void buildStreet(WorldBuilder& w) {
   const double face = road / 2 + walk;  // facade line |y|
   const bool crossing = w.spec().crossing;
   const double skip = crossing ? face : -1e9;  // |x| kept free for the crossroad
-  w.floor(len + 40, crossing ? len + 40 : 2 * face + 40, w.uni(0.15, 0.25), "markings",
-          w.uni(2.0, 3.0));
+  const double floor_albedo = w.uni(0.15, 0.25), floor_scale = w.uni(2.0, 3.0);
+  w.floor(len + 40, crossing ? len + 40 : 2 * face + 40, floor_albedo, "markings", floor_scale);
   // Platform first: its lane stays clear.
   const std::string& route = w.spec().route;
   if (route == "auto" || route == "drive") {
     const std::vector<V2> pts{{-len / 2 + 8, -road / 4}, {len / 2 - 8, -road / 4}};
-    w.platform(pts, w.platformSpeed(5.0), false);
+    w.platform(pts, w.platformSpeed(5.0), false, 2.0);  // a car: 2 m kept clear of others
     w.keepOut(pts, 1.5, false);
   } else if (route == "stationary" || route == "corner") {
     const V2 at = crossing ? V2(road / 2 + walk * 0.4, -road / 2 - walk * 0.4)
@@ -68,8 +68,11 @@ void buildStreet(WorldBuilder& w) {
   if (crossing)  // the cross street's facades
     for (double sx : {-1.0, 1.0})
       for (double sy : {-1.0, 1.0})
-        w.box(sx * (face + 4 + w.uni(0, 1.5)), sy * (face + 25), 8, 40, w.uni(6, 20), 0,
-              w.material(0.3, 0.6, kFacade, 1.5, 2.5));
+        for (int once = 0; once < 1; once++) {
+          const double setback = w.uni(0, 1.5), height = w.uni(6, 20);
+          const std::string m = w.material(0.3, 0.6, kFacade, 1.5, 2.5);
+          w.box(sx * (face + 4 + setback), sy * (face + 25), 8, 40, height, 0, m);
+        }
   // Parked cars in the parking strips, trees, lamp posts, hedges and railings.
   const double occupancy = w.uni(0.3, 0.7);
   for (double side : {-1.0, 1.0})
@@ -82,8 +85,10 @@ void buildStreet(WorldBuilder& w) {
   for (int k = 0; k < trees; k++) {
     const double side = w.chance(0.5) ? 1 : -1, x = w.uni(-len / 2, len / 2);
     const V2 p(x, side * (road / 2 + w.uni(0.8, 1.2)));
-    if (std::abs(x) > skip + 2 && w.isFree(p, 1.0))
-      w.tree(p.x(), p.y(), w.uni(5, 10), w.uni(1.5, 3.0));
+    if (std::abs(x) > skip + 2 && w.isFree(p, 1.0)) {
+      const double height = w.uni(5, 10);
+      w.tree(p.x(), p.y(), height, w.uni(1.5, 3.0));
+    }
   }
   for (double x = -len / 2 + w.uni(0, 20); x < len / 2; x += w.uni(18, 30)) {
     const double side = w.chance(0.5) ? 1 : -1;
@@ -100,34 +105,42 @@ void buildStreet(WorldBuilder& w) {
   for (int k = w.count(w.spec().fences, 2, 5); k > 0; k--) {  // railings along the kerb
     const double side = w.chance(0.5) ? 1 : -1, l = w.uni(4, 15), x = w.uni(-len / 2, len / 2 - l);
     const double y = side * (road / 2 + 0.45);
-    if ((x > skip || x + l < -skip) && w.isFree({x + l / 2, y}, 0.3))
-      w.fence({x, y}, {x + l, y}, w.uni(0.9, 1.2),
-              kFences[static_cast<std::size_t>(w.uniInt(0, 2))]);
+    if ((x > skip || x + l < -skip) && w.isFree({x + l / 2, y}, 0.3)) {
+      const double height = w.uni(0.9, 1.2);
+      w.fence({x, y}, {x + l, y}, height, kFences[static_cast<std::size_t>(w.uniInt(0, 2))]);
+    }
   }
   // Traffic: cars both ways (and across at a crossroad), cyclists, pedestrians on the sidewalks.
+  // A vehicle that would drive into the platform is drawn again (mover()).
   const int cars = w.count(w.spec().cars, 3, 8);
-  for (int k = 0; k < cars; k++) {
-    const double dir = w.chance(0.5) ? 1 : -1, y = dir > 0 ? -road / 4 : road / 4;
-    std::vector<V2> pts{{-dir * (len / 2 + 20), y}, {dir * (len / 2 + 20), y}};
-    if (crossing && k % 3 == 2) pts = {{y, -dir * (len / 2)}, {y, dir * (len / 2)}};
-    w.mover("car", pts, w.uni(5, 12), true, w.uni(0, 0.5 * w.duration()));
-  }
-  for (int k = w.count(w.spec().cyclists, 1, 4); k > 0; k--) {
-    const double dir = w.chance(0.5) ? 1 : -1, y = dir > 0 ? -(road / 2 - 2.4) : road / 2 - 2.4;
-    w.mover("cyclist", {{-dir * (len / 2 + 10), y}, {dir * (len / 2 + 10), y}}, w.uni(3, 6), true,
-            w.uni(0, 0.5 * w.duration()));
-  }
+  for (int k = 0; k < cars; k++)
+    for (int tries = 0; tries < 10; tries++) {
+      const double dir = w.chance(0.5) ? 1 : -1, y = dir > 0 ? -road / 4 : road / 4;
+      std::vector<V2> pts{{-dir * (len / 2 + 20), y}, {dir * (len / 2 + 20), y}};
+      if (crossing && k % 3 == 2) pts = {{y, -dir * (len / 2)}, {y, dir * (len / 2)}};
+      const double speed = w.uni(5, 12);
+      if (w.mover("car", pts, speed, true, w.uni(0, 0.5 * w.duration()))) break;
+    }
+  for (int k = w.count(w.spec().cyclists, 1, 4); k > 0; k--)
+    for (int tries = 0; tries < 10; tries++) {
+      const double dir = w.chance(0.5) ? 1 : -1;
+      const double y = dir > 0 ? -(road / 2 - 2.4) : road / 2 - 2.4, speed = w.uni(3, 6);
+      if (w.mover("cyclist", {{-dir * (len / 2 + 10), y}, {dir * (len / 2 + 10), y}}, speed, true,
+                  w.uni(0, 0.5 * w.duration())))
+        break;
+    }
   const int people = w.count(w.spec().pedestrians, 8, 20);
   for (int k = 0; k < people; k++) {
     const double side = w.chance(0.5) ? 1 : -1;
     const double y0 = side * (road / 2 + 0.5), y1 = side * (face - 0.3);
     const Eigen::Vector4d region(-len / 2 + 5, std::min(y0, y1), len / 2 - 5, std::max(y0, y1));
     V2 p;
-    if (crossing && k % 5 == 4)  // crossing the street at the crossroad, waiting in between
+    if (crossing && k % 5 == 4) {  // crossing the street at the crossroad, waiting in between
+      const double speed = w.uni(0.9, 1.5), start = w.uni(0, 10);
       w.mover("pedestrian", {{-face + 1, side * (face - 1)}, {-face + 1, -side * (face - 1)}},
-              w.uni(0.9, 1.5), true, w.uni(0, 10), w.uni(2, 8));
-    else if (w.chance(w.spec().standing) &&
-             w.freeSpot(region[0], region[1], region[2], region[3], 0.6, p))
+              speed, true, start, w.uni(2, 8));
+    } else if (w.chance(w.spec().standing) &&
+               w.freeSpot(region[0], region[1], region[2], region[3], 0.6, p))
       w.stander(p);
     else
       w.walker(region, 0.8, 1.6, 3.0);
@@ -137,22 +150,27 @@ void buildStreet(WorldBuilder& w) {
 void buildPlaza(WorldBuilder& w) {
   const V2 size = w.size(35, 60, 30, 50);
   const double sx = size.x(), sy = size.y();
-  w.floor(sx + 40, sy + 40, w.uni(0.2, 0.35), w.chance(0.5) ? "checker" : "markings",
-          w.uni(0.6, 1.5));
+  const double floor_albedo = w.uni(0.2, 0.35);
+  const char* floor_pattern = w.chance(0.5) ? "checker" : "markings";
+  w.floor(sx + 40, sy + 40, floor_albedo, floor_pattern, w.uni(0.6, 1.5));
   // Buildings around, broken by streets leading out.
   for (double side : {-1.0, 1.0}) {
     for (double x = -sx / 2 - 10; x < sx / 2 + 10;) {
       const double l = w.uni(8, 25);
-      if (!w.chance(0.2))
-        w.box(x + l / 2, side * (sy / 2 + 5), l, 10, w.uni(8, 20), 0,
+      if (!w.chance(0.2)) {
+        const double height = w.uni(8, 20);
+        w.box(x + l / 2, side * (sy / 2 + 5), l, 10, height, 0,
               w.material(0.3, 0.6, kFacade, 1.5, 2.5));
+      }
       x += l + (w.chance(0.35) ? w.uni(6, 10) : 0.2);
     }
     for (double y = -sy / 2; y < sy / 2;) {
       const double l = w.uni(8, 25);
-      if (!w.chance(0.2))
-        w.box(side * (sx / 2 + 5), y + l / 2, 10, l, w.uni(8, 20), 0,
+      if (!w.chance(0.2)) {
+        const double height = w.uni(8, 20);
+        w.box(side * (sx / 2 + 5), y + l / 2, 10, l, height, 0,
               w.material(0.3, 0.6, kFacade, 1.5, 2.5));
+      }
       y += l + (w.chance(0.35) ? w.uni(6, 10) : 0.2);
     }
   }
@@ -172,23 +190,28 @@ void buildPlaza(WorldBuilder& w) {
                                 "' (this kind offers: cross, loop, stationary)");
   }
   if (pts.size() == 1)
-    w.platformStationary(pts[0], w.uni(-180, 180));
+    w.platformStationary(pts[0], w.uni(-180, 180), 0.8);
   else
     w.platform(pts, w.platformSpeed(1.0), true);
   w.keepOut(pts, pts.size() == 1 ? 1.5 : 1.8, route == "loop");
   // Furniture and vegetation.
   const double mx = sx / 2 - 1.5, my = sy / 2 - 1.5;
   V2 p;
-  if (w.chance(0.5) && w.freeSpot(-sx / 4, -sy / 4, sx / 4, sy / 4, 4.0, p))  // a fountain
-    w.cylinder(p.x(), p.y(), w.uni(2, 3.5), w.uni(0.5, 0.8),
-               "{albedo: 0.55, pattern: noise, scale: 0.3}");
+  if (w.chance(0.5) && w.freeSpot(-sx / 4, -sy / 4, sx / 4, sy / 4, 4.0, p)) {  // a fountain
+    const double r = w.uni(2, 3.5);
+    w.cylinder(p.x(), p.y(), r, w.uni(0.5, 0.8), "{albedo: 0.55, pattern: noise, scale: 0.3}");
+  }
   for (int k = w.count(w.spec().trees, 5, 12); k > 0; k--)
-    if (w.freeSpot(-mx, -my, mx, my, 1.5, p)) w.tree(p.x(), p.y(), w.uni(5, 11), w.uni(1.5, 3.5));
+    if (w.freeSpot(-mx, -my, mx, my, 1.5, p)) {
+      const double height = w.uni(5, 11);
+      w.tree(p.x(), p.y(), height, w.uni(1.5, 3.5));
+    }
   for (int k = w.count(w.spec().bushes, 4, 10); k > 0; k--) {
     const double a = w.uni(0.8, 3.0), b = w.uni(0.8, 2.0);
     if (!w.freeSpot(-mx, -my, mx, my, 0.6 * std::hypot(a, b), p)) continue;
     const bool hedge = w.chance(0.3);
-    w.bush(p.x(), p.y(), a, b, w.uni(0.6, 1.5), w.uni(0, 180), hedge);
+    const double height = w.uni(0.6, 1.5);
+    w.bush(p.x(), p.y(), a, b, height, w.uni(0, 180), hedge);
     if (w.chance(0.3)) {  // a low railing around the bed
       const V2 f(p.x() - a / 2 - 0.5, p.y() + b / 2 + 0.5),
           g(p.x() + a / 2 + 0.5, p.y() + b / 2 + 0.5);
@@ -196,17 +219,21 @@ void buildPlaza(WorldBuilder& w) {
     }
   }
   for (int k = w.uniInt(3, 8); k > 0; k--)  // benches
-    if (w.freeSpot(-mx, -my, mx, my, 1.2, p))
-      w.box(p.x(), p.y(), 1.8, 0.5, 0.45, w.uni(0, 180),
+    if (w.freeSpot(-mx, -my, mx, my, 1.2, p)) {
+      const double yaw = w.uni(0, 180);
+      w.box(p.x(), p.y(), 1.8, 0.5, 0.45, yaw,
             w.material(0.3, 0.6, {"stripes", "noise"}, 0.1, 0.2));
+    }
   for (int k = w.uniInt(4, 10); k > 0; k--)  // lamp posts
     if (w.freeSpot(-mx, -my, mx, my, 0.5, p))
       w.cylinder(p.x(), p.y(), 0.08, w.uni(4, 6), "{albedo: 0.5, pattern: stripes, scale: 0.4}");
   for (int k = w.count(w.spec().fences, 1, 3); k > 0; k--) {
     const double l = w.uni(4, 12), yaw = w.chance(0.5) ? 0 : M_PI / 2;
     const V2 d(std::cos(yaw) * l / 2, std::sin(yaw) * l / 2);
-    if (w.freeSpot(-mx + l / 2, -my + l / 2, mx - l / 2, my - l / 2, l / 2, p))
-      w.fence(p - d, p + d, w.uni(0.9, 1.8), kFences[static_cast<std::size_t>(w.uniInt(0, 2))]);
+    if (w.freeSpot(-mx + l / 2, -my + l / 2, mx - l / 2, my - l / 2, l / 2, p)) {
+      const double height = w.uni(0.9, 1.8);
+      w.fence(p - d, p + d, height, kFences[static_cast<std::size_t>(w.uniInt(0, 2))]);
+    }
   }
   // People (a crowd when asked), a few cyclists across.
   const int people = w.count(w.spec().pedestrians, 10, 25);
@@ -217,11 +244,14 @@ void buildPlaza(WorldBuilder& w) {
       w.stander(p);
     else
       w.walker(region, 0.6, 1.6, 4.0, w.chance(0.15) ? w.uni(3, 0.5 * w.duration()) : 0.0);
-  for (int k = w.count(w.spec().cyclists, 0, 3); k > 0; k--) {
-    const double y0 = w.uni(-ay, ay), y1 = w.uni(-ay, ay), dir = w.chance(0.5) ? 1 : -1;
-    w.mover("cyclist", {{-dir * (sx / 2 + 8), y0}, {dir * (sx / 2 + 8), y1}}, w.uni(3, 5.5), true,
-            w.uni(0, 0.5 * w.duration()));
-  }
+  for (int k = w.count(w.spec().cyclists, 0, 3); k > 0; k--)
+    for (int tries = 0; tries < 10; tries++) {  // not through the platform (mover())
+      const double y0 = w.uni(-ay, ay), y1 = w.uni(-ay, ay), dir = w.chance(0.5) ? 1 : -1;
+      const double speed = w.uni(3, 5.5);
+      if (w.mover("cyclist", {{-dir * (sx / 2 + 8), y0}, {dir * (sx / 2 + 8), y1}}, speed, true,
+                  w.uni(0, 0.5 * w.duration())))
+        break;
+    }
 }
 
 }  // namespace dynobj::sim::detail

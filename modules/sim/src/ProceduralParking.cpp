@@ -25,7 +25,8 @@ void buildParking(WorldBuilder& w) {
   const V2 size = w.size(40, 70, 30, 50);
   const double sx = size.x(), sy = size.y();
   constexpr double kSlotW = 2.6, kSlotD = 5.0, kLane = 6.5, kEnd = 6.0;
-  w.floor(sx + 60, sy + 60, w.uni(0.12, 0.22), "markings", w.uni(2.4, 2.8));
+  const double floor_albedo = w.uni(0.12, 0.22);
+  w.floor(sx + 60, sy + 60, floor_albedo, "markings", w.uni(2.4, 2.8));
   // Rows and lanes from the bottom edge up.
   std::vector<double> lanes;
   std::vector<std::pair<double, double>> rows;  // (centre y, direction of its lane: +1 / -1)
@@ -46,8 +47,7 @@ void buildParking(WorldBuilder& w) {
   }
   const double top = y + kSlotD;  // the lot's upper edge
   const double x0 = -sx / 2 + kEnd, x1 = sx / 2 - kEnd, xe = sx / 2 - kEnd / 2;
-  constexpr double kKeep =
-      1.6;  // the platform keeps to one side of a lane, the others to the other
+  constexpr double kKeep = 1.6;  // the platform keeps to one side of a lane, the others opposite
   // Platform: around the lanes (or standing at the end of one).
   const std::string& route = w.spec().route;
   std::vector<V2> pts;
@@ -56,11 +56,11 @@ void buildParking(WorldBuilder& w) {
     if (lanes.size() > 1)
       pts.insert(pts.end(), {{xe, lanes.back() - kKeep}, {-xe, lanes.back() - kKeep}});
     if (w.chance(0.5)) std::reverse(pts.begin(), pts.end());
-    w.platform(pts, w.platformSpeed(3.0), true);
+    w.platform(pts, w.platformSpeed(3.0), true, 2.0);  // a car: 2 m kept clear of others
     w.keepOut(pts, 1.5, true);
   } else if (route == "stationary") {
     pts = {{-xe, lanes.front() - kKeep}};
-    w.platformStationary(pts[0], 0);
+    w.platformStationary(pts[0], 0, 2.0);
     w.keepOut(pts, 1.5, false);
   } else {
     throw std::invalid_argument("route '" + route + "' (this kind offers: loop, stationary)");
@@ -89,10 +89,11 @@ void buildParking(WorldBuilder& w) {
       continue;
     }
     const double exit = (w.chance(0.5) ? 1 : -1) * (sx / 2 + 15);
-    const double yl = s.lane_y + kKeep;
-    w.mover("car", {s.at, {s.at.x(), yl}, {exit, yl}}, w.uni(2, 4), false,
-            w.uni(1, 0.75 * w.duration()));
-    w.keepOutDisc(s.at, 2.3);
+    const double yl = s.lane_y + kKeep, speed = w.uni(2, 4), start = w.uni(1, 0.75 * w.duration());
+    if (w.mover("car", {s.at, {s.at.x(), yl}, {exit, yl}}, speed, false, start))
+      w.keepOutDisc(s.at, 2.3);
+    else  // it would drive into the platform: it stays
+      w.parkedCar(s.at.x(), s.at.y(), yaw);
   }
   // Islands at the row ends: trees, bushes, lamp posts.
   int trees = w.count(w.spec().trees, 4, 10), bushes = w.count(w.spec().bushes, 3, 8);
@@ -101,10 +102,12 @@ void buildParking(WorldBuilder& w) {
       const V2 p(side * (sx / 2 - kEnd - kSlotW / 2), ry);
       if (!w.isFree(p, 0.9)) continue;
       if (trees > 0 && w.chance(0.5)) {
-        w.tree(p.x(), p.y(), w.uni(5, 9), w.uni(1.5, 3.0));
+        const double height = w.uni(5, 9);
+        w.tree(p.x(), p.y(), height, w.uni(1.5, 3.0));
         trees--;
       } else if (bushes > 0 && w.chance(0.6)) {
-        w.bush(p.x(), p.y(), w.uni(1.0, 1.8), w.uni(2, 4.5), w.uni(0.6, 1.3), 0, w.chance(0.5));
+        const double bx = w.uni(1.0, 1.8), by = w.uni(2, 4.5), bz = w.uni(0.6, 1.3);
+        w.bush(p.x(), p.y(), bx, by, bz, 0, w.chance(0.5));
         bushes--;
       } else {
         w.cylinder(p.x(), p.y(), 0.12, w.uni(7, 10),
@@ -129,21 +132,28 @@ void buildParking(WorldBuilder& w) {
     }
   }
   for (; trees > 0; trees--) {
-    const V2 p(w.uni(-sx / 2, sx / 2), w.chance(0.5) ? -sy / 2 - 3 : top + 3);
-    if (w.isFree(p, 1.0)) w.tree(p.x(), p.y(), w.uni(6, 11), w.uni(2, 3.5));
+    const V2 p{w.uni(-sx / 2, sx / 2), w.chance(0.5) ? -sy / 2 - 3 : top + 3};
+    if (w.isFree(p, 1.0)) {
+      const double height = w.uni(6, 11);
+      w.tree(p.x(), p.y(), height, w.uni(2, 3.5));
+    }
   }
-  w.box(w.uni(-sx / 6, sx / 6), top + 12, sx * w.uni(0.5, 0.8), 12, w.uni(6, 10), 0,
+  const double shop_x = w.uni(-sx / 6, sx / 6), shop_len = sx * w.uni(0.5, 0.8);
+  const double shop_h = w.uni(6, 10);
+  w.box(shop_x, top + 12, shop_len, 12, shop_h, 0,
         w.material(0.35, 0.6, {"posters", "checker", "noise"}, 1.5, 2.5));
   // Cars cruising the lanes, people walking between the cars.
-  for (int k = w.count(w.spec().cars, 1, 3); k > 0; k--) {
-    const double la =
-        lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
-    const double lb =
-        lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
-    const double xc = xe - kKeep;
-    w.mover("car", {{xc, la + kKeep}, {-xc, la + kKeep}, {-xc, lb + kKeep}, {xc, lb + kKeep}},
-            w.uni(2.5, 4.5), true, w.uni(0, 0.5 * w.duration()));
-  }
+  for (int k = w.count(w.spec().cars, 1, 3); k > 0; k--)
+    for (int tries = 0; tries < 10; tries++) {  // not into the platform (mover())
+      const double la =
+          lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
+      const double lb =
+          lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
+      const double xc = xe - kKeep, speed = w.uni(2.5, 4.5);
+      if (w.mover("car", {{xc, la + kKeep}, {-xc, la + kKeep}, {-xc, lb + kKeep}, {xc, lb + kKeep}},
+                  speed, true, w.uni(0, 0.5 * w.duration())))
+        break;
+    }
   const int people = w.count(w.spec().pedestrians, 4, 12);
   for (int k = 0; k < people; k++) {
     const double la =

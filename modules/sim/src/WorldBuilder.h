@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "dynobj/sim/PoseTrack.h"
 #include "dynobj/sim/Procedural.h"
 
 namespace dynobj::sim::detail {
@@ -55,10 +56,14 @@ class WorldBuilder {
   void walker(const Eigen::Vector4d& region, double speed_lo, double speed_hi, double pause_hi,
               double start = 0);
   void stander(const Eigen::Vector2d& at);
-  void mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts, double speed,
+  /// A pedestrian, cyclist or car on waypoints. A vehicle whose footprint would come within the
+  /// platform's radius of the sensor at any time is not added (false): draw another.
+  bool mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts, double speed,
              bool loop, double start, double pause = 0);
-  void platform(const std::vector<Eigen::Vector2d>& pts, double speed, bool loop);
-  void platformStationary(const Eigen::Vector2d& at, double yaw_deg);
+  /// The sensor platform (call before any mover). `radius` [m]: its body, kept clear of vehicles.
+  void platform(const std::vector<Eigen::Vector2d>& pts, double speed, bool loop,
+                double radius = 0.8);
+  void platformStationary(const Eigen::Vector2d& at, double yaw_deg, double radius = 0.5);
 
   std::string yaml() const;
 
@@ -79,6 +84,8 @@ class WorldBuilder {
   std::mt19937 rng_;
   std::vector<Disc> occupied_;
   std::vector<Corridor> corridors_;
+  PoseTrack platform_track_;
+  double platform_radius_ = 0;
   std::ostringstream floor_, static_, actors_, platform_;
 };
 
