@@ -8,7 +8,8 @@
 #
 #   scripts/accuracy-matrix.sh [-j N] [-n FRAMES] [--seeds "1 2 3"] [--scenarios "hall plaza"]
 #                              [--sensors "vlp-16 os0-64"] [--distortion both|off|on]
-#                              [--intensity auto|scenario] [-c detector.ini] [-o OUT]
+#                              [--intensity auto|scenario|ouster|velodyne] [-c detector.ini]
+#                              [-o OUT]
 #                              [--keep] [--no-build]
 #
 # DYNOBJ_BUILD_DIR (default build/) is built first unless --no-build; DYNOBJ_BIN_DIR (default
@@ -17,7 +18,8 @@
 # interrupted run continues where it stopped (delete OUT/cells/... to redo a cell; change -n or
 # the detector and use another -o). Sim outputs are deleted once scored (--keep keeps them).
 # --intensity auto (default) gives Velodyne presets (vlp-*, hdl-*) Velodyne 0-255 intensities and
-# Ouster presets Ouster signal; `scenario` keeps what each scenario says. Also reachable as
+# Ouster presets Ouster signal; `scenario` keeps what each scenario says; `ouster` / `velodyne`
+# force one model everywhere. Also reachable as
 # `scripts/accuracy.sh --matrix ...`. Output: OUT/matrix.md, OUT/cells.tsv (one line per cell).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -31,12 +33,13 @@ if [ "${1:-}" = "--cell" ]; then
   [ -f "$dir/result.tsv" ] && exit 0
   rm -rf "$dir" && mkdir -p "$dir"
   sets=(--set "sensor=sensors/$sensor.ini" --set "motion_distortion=$([ "$md" = md ] && echo true || echo false)")
-  if [ "$INTENSITY" = auto ]; then
-    case "$sensor" in
-      vlp-*|hdl-*) sets+=(--set intensity.model=velodyne) ;;
-      *) sets+=(--set intensity.model=ouster) ;;
-    esac
-  fi
+  case "$INTENSITY" in
+    auto) case "$sensor" in
+            vlp-*|hdl-*) sets+=(--set intensity.model=velodyne) ;;
+            *) sets+=(--set intensity.model=ouster) ;;
+          esac ;;
+    ouster|velodyne) sets+=(--set "intensity.model=$INTENSITY") ;;
+  esac
   t0=$(date +%s)
   if ! "$BIN/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/$scen.yaml" -o "$dir/sim" \
        --frames "$FRAMES" --seed "$seed" "${sets[@]}" --compression 0 -q > "$dir/sim.log" 2>&1 ||
@@ -79,7 +82,8 @@ while [ $# -gt 0 ]; do
 done
 case "$DISTORTION" in both) MDS="nomd md" ;; off) MDS="nomd" ;; on) MDS="md" ;;
   *) echo "--distortion: both, off or on" >&2; exit 2 ;; esac
-case "$INTENSITY" in auto|scenario) ;; *) echo "--intensity: auto or scenario" >&2; exit 2 ;; esac
+case "$INTENSITY" in auto|scenario|ouster|velodyne) ;;
+  *) echo "--intensity: auto, scenario, ouster or velodyne" >&2; exit 2 ;; esac
 [ -n "$SCENARIOS" ] || SCENARIOS="$(cd "$DYNOBJ_ROOT/share/dynobj/scenarios" && ls *.yaml | sed 's/\.yaml$//' | tr '\n' ' ')"
 [ -n "$SENSORS" ] || SENSORS="$(cd "$DYNOBJ_ROOT/share/dynobj/sensors" && ls *.ini | sed 's/\.ini$//' | tr '\n' ' ')"
 for s in $SCENARIOS; do [ -f "$DYNOBJ_ROOT/share/dynobj/scenarios/$s.yaml" ] || { echo "no scenario '$s'" >&2; exit 2; }; done
