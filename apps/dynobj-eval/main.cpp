@@ -4,12 +4,13 @@
 //   --run <scenario.yaml | sequence dir | file.rawlog>: simulate if needed, run the detector and
 //         the baselines, evaluate, report.
 //   --gt <file.labels> --pred <file.labels>: evaluate existing label files.
-#include <dynobj/core/AtomicFile.h>
 #include <dynobj/core/FrameImages.h>
-#include <dynobj/core/LabelFile.h>
 #include <dynobj/eval/ExperimentRunner.h>
 #include <dynobj/eval/Overlay.h>
 #include <dynobj/eval/Report.h>
+#include <dynobj/io/AtomicFile.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/io/Png.h>
 #include <mrpt/config/CConfigFile.h>
 #include <unistd.h>
 
@@ -53,7 +54,7 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
                   const std::vector<eval::RunResult>& runs) {
   const std::string table = eval::markdownTable(runs);
   std::cout << table;
-  core::writeFileAtomically(dir + "/summary.md", table);
+  io::writeFileAtomically(dir + "/summary.md", table);
   eval::writeJsonSummary(dir + "/summary.json", runs);
   std::vector<std::pair<std::string, cv::Mat>> sheet;
   for (const auto& r : runs) {
@@ -61,12 +62,11 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
     for (const auto& [sweep, img] : r.overlays) {
       char name[32];
       std::snprintf(name, sizeof(name), ".sweep-%04d.png", sweep);
-      core::writePng(dir + "/overlays/" + r.sequence + "." + r.mode + name, img);
+      io::writePng(dir + "/overlays/" + r.sequence + "." + r.mode + name, img);
       sheet.emplace_back(r.sequence + " " + r.mode + ", sweep " + std::to_string(sweep), img);
     }
   }
-  if (!sheet.empty())
-    core::writePng(dir + "/overlays/contact-sheet.png", eval::contactSheet(sheet));
+  if (!sheet.empty()) io::writePng(dir + "/overlays/contact-sheet.png", eval::contactSheet(sheet));
   eval::writeHtmlReport(dir + "/report.html", title, command, runs);
   std::cerr << "[dynobj-eval] report: " << dir << "/report.html (and summary.md, summary.json, "
             << "*.sweeps.csv, overlays/)\n";
@@ -124,8 +124,8 @@ int run(int argc, char** argv) {
     r.description = std::filesystem::path(pred.getValue()).filename().string();
     r.sequence = std::filesystem::path(gt.getValue()).filename().string();
     r.sequence = r.sequence.substr(0, r.sequence.find('.'));  // hall.gt.labels -> hall
-    const core::LabelFile truth = core::LabelFile::read(gt.getValue());
-    const core::LabelFile predicted = core::LabelFile::read(pred.getValue());
+    const io::LabelFile truth = io::LabelFile::read(gt.getValue());
+    const io::LabelFile predicted = io::LabelFile::read(pred.getValue());
     r.metrics = eval::SequenceMetrics::compute(truth, predicted);
     r.rows = truth.rows;
     r.cols = truth.cols;
@@ -135,7 +135,7 @@ int run(int argc, char** argv) {
 
   eval::RunOptions opts;
   if (config.isSet()) {
-    ::mrpt::config::CConfigFile cfg(config.getValue());
+    mrpt::config::CConfigFile cfg(config.getValue());
     opts.params.load(cfg);
   }
   if (drift.isSet()) opts.drift = eval::DriftParams::parse(drift.getValue());
@@ -154,7 +154,7 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("--modes: unknown mode '" + m +
                                   "' (intensity, gt-ego, drift, mrpt-distance)");
   const std::size_t n_sweeps =
-      std::min(opts.max_frames, core::LabelFile::read(seq.labels).sweeps.size());
+      std::min(opts.max_frames, io::LabelFile::read(seq.labels).sweeps.size());
   opts.overlay_sweeps = overlaySweeps(std::max(0, overlays.getValue()), n_sweeps);
   if (overlay_list.isSet()) {
     opts.overlay_sweeps.clear();

@@ -2,7 +2,8 @@
 // dynobj-frames: converts the LiDAR observations of a rawlog into LiDAR frames and writes their
 // range and intensity images as PNG, with one line of statistics per frame.
 #include <dynobj/core/FrameImages.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
+#include <dynobj/io/Png.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
 
 #include <cstdio>
 #include <iostream>
@@ -41,16 +42,16 @@ int run(int argc, char** argv) {
   const std::string dir = out.getValue();
   dynobj::apps::ensureDirectory(dir);
 
-  dynobj::mrpt::LidarObservationStream stream(in.getValue(),
-                                              dynobj::mrpt::ObservationConverter(model),
-                                              {label.getValue(), from.getValue(), to.getValue()});
-  dynobj::mrpt::LidarObservationStream::Item item;
+  dynobj::mrptio::RawlogFrameSource stream(in.getValue(),
+                                           dynobj::mrptio::ObservationConverter(model),
+                                           {label.getValue(), from.getValue(), to.getValue()});
+  dynobj::mrptio::Frame item;
   std::size_t frames = 0;
   while (stream.next(item)) {
     char name[64];
     std::snprintf(name, sizeof(name), "_%06zu_", item.entry);
     const std::string prefix = dir + "/" + item.observation->sensorLabel + name;
-    dynobj::core::writeFramePngs(item.frame, prefix, row_scale.getValue());
+    dynobj::io::writeFramePngs(item.frame, prefix, row_scale.getValue());
     if (!quiet.isSet())
       std::cout << "entry " << item.entry << " '" << item.observation->sensorLabel << "' "
                 << item.observation->GetRuntimeClass()->className << ": " << item.frame.rows()

@@ -72,7 +72,7 @@ int run(int argc, char** argv) {
   o.pose_options.tolerance_s = pose_tol.getValue();
   o.pose_options.tum_robot_poses = tum_robot.getValue();
   if (config.isSet()) {
-    ::mrpt::config::CConfigFile cfg(config.getValue());
+    mrpt::config::CConfigFile cfg(config.getValue());
     o.detector.load(cfg);
     o.clean.loadFromConfigFile(cfg, "mapclean");
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-sim: simulates a labelled LiDAR sequence from a scenario file (docs/simulator.md).
 #include <dynobj/core/FrameImages.h>
+#include <dynobj/io/Png.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <unistd.h>
@@ -66,8 +67,8 @@ int run(int argc, char** argv) {
     if (k == preview.getValue()) {
       const cv::Mat img =
           dynobj::core::overlayMask(dynobj::core::intensityToU8(sweep.frame), sweep.dynamic);
-      dynobj::core::writePng(out.getValue() + "/" + s.name + ".preview.png",
-                             dynobj::core::scaleRows(img, 2));
+      dynobj::io::writePng(out.getValue() + "/" + s.name + ".preview.png",
+                           dynobj::core::scaleRows(img, 2));
     }
     if (tty)
       std::cerr << "\r[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames

@@ -6,9 +6,9 @@
 // holds at most `max_ratio` times as many such points.
 //   map_dynamic_points <seq.rawlog> <seq.gt.labels> <seq.gt.tum> <raw_map.txt> <filtered_map.txt>
 //   <max_ratio>
-#include <dynobj/core/LabelFile.h>
-#include <dynobj/core/TumFile.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/io/PoseFile.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
 
 #include <cstdio>
 #include <fstream>
@@ -73,15 +73,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto gt = dynobj::core::LabelFile::read(argv[2]);
-    const auto poses = dynobj::core::readTumFile(argv[3]);
-    dynobj::mrpt::LidarObservationStream s(argv[1], dynobj::mrpt::ObservationConverter(),
-                                           {"LIDAR", 0, 1000000});
-    dynobj::mrpt::LidarObservationStream::Item it;
+    const auto gt = dynobj::io::LabelFile::read(argv[2]);
+    const auto poses = dynobj::io::readPoseFile(argv[3], dynobj::io::PoseFormat::Tum);
+    dynobj::mrptio::RawlogFrameSource s(argv[1], dynobj::mrptio::ObservationConverter(),
+                                        {"LIDAR", 0, 1000000});
+    dynobj::mrptio::Frame it;
     NearSet dyn;
     std::size_t k = 0;
     while (s.next(it)) {
-      const auto* p = dynobj::core::findPose(poses, it.frame.timestamp_ns);
+      const auto* p = dynobj::io::findPose(poses, it.frame.timestamp_ns);
       if (!p || k >= gt.sweeps.size())
         throw std::runtime_error("ground truth does not match the rawlog");
       for (auto px : gt.sweeps[k].pixels) {

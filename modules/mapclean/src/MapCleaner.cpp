@@ -2,7 +2,7 @@
 #include "dynobj/mapclean/MapCleaner.h"
 
 #include <dynobj/core/Config.h>
-#include <dynobj/core/LabelFile.h>
+#include <dynobj/io/LabelFile.h>
 
 #include <algorithm>
 
@@ -63,7 +63,7 @@ FrameRecord MapCleaner::record(const core::DetectionResult& r,
   FrameRecord rec;
   rec.timestamp_ns = r.timestamp_ns;
   rec.sensor_pose = sensor_pose;
-  rec.dynamic_pixels = core::pixelsOfMask(r.dynamic);
+  rec.dynamic_pixels = io::pixelsOfMask(r.dynamic);
   for (const core::TrackedObject& o : r.objects) {
     rec.objects.push_back({o.id, o.dynamic, o.box_min.cast<float>(), o.box_max.cast<float>()});
     if (o.dynamic) confirmed_.insert(o.id);
