@@ -5,6 +5,7 @@
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/io/PoseFile.h>
 #include <dynobj/mrptio/PointCloudFilterAdapter.h>
+#include <dynobj/mrptio/PoseConversion.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
 #include <dynobj/mrptio/TimeConversion.h>
 #include <dynobj/sim/LidarSimulator.h>
@@ -138,8 +139,7 @@ TEST(Detector, BehindMrptsPointCloudFilterInterface) {
     std::vector<bool> del;
     mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
     extra.out_deletion_mask = &del;
-    const auto pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(
-        mrpt::math::CMatrixDouble44(sweep.sensor_pose.matrix()));
+    const auto pose = dynobj::mrptio::toCPose3D(sweep.sensor_pose);
     filter.filter(&cloud, dynobj::mrptio::fromUnixNs(sweep.timestamp_ns), pose, &extra);
     ASSERT_EQ(del.size(), before);
     const auto n = static_cast<std::size_t>(std::count(del.begin(), del.end(), true));

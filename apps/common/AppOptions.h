@@ -6,6 +6,7 @@
 
 #include <dynobj/core/DynamicObjectDetector.h>
 #include <dynobj/core/SensorModel.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/ObservationConverter.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -30,7 +31,7 @@ class SensorArgs {
   }
   std::optional<core::SensorModel> model() const {
     if (!sensor_.isSet()) return std::nullopt;
-    return core::SensorModel::fromFile(sensor_.getValue());
+    return io::readSensorModel(sensor_.getValue());
   }
   mrptio::ObservationConverter converter() const { return mrptio::ObservationConverter(model()); }
   const std::string& label() const { return label_.getValue(); }

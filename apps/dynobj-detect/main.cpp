@@ -20,8 +20,8 @@ namespace {
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-detect: detect dynamic points in a rawlog's LiDAR scans", ' ', "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "file.rawlog", cmd);
-  TCLAP::ValueArg<std::string> out("o", "labels-out", "Write the detections (label file v1)", false,
-                                   "", "file.labels", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Write the detections (label file v1)", false,
+                                    "file.labels", "labels-out");
   TCLAP::ValueArg<std::string> gt("", "gt",
                                   "Ground-truth label file: print precision/recall/IoU/F1", false,
                                   "", "file.labels", cmd);

@@ -3,6 +3,7 @@
 // range and intensity images as PNG, with one line of statistics per frame.
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/io/Png.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
 
 #include <cstdio>
@@ -17,8 +18,8 @@ int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-frames: write the range/intensity images of a rawlog's LiDAR scans",
                      ' ', "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "file.rawlog", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out-dir", "Output directory (created if missing)", false,
-                                   ".", "dir", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Output directory (created if missing)", false, "dir",
+                                    "out-dir", ".");
   TCLAP::ValueArg<std::string> sensor("", "sensor",
                                       "Sensor preset INI (share/dynobj/sensors/*.ini); needed for "
                                       "point clouds and rotating scans",
@@ -38,7 +39,7 @@ int run(int argc, char** argv) {
   }
 
   std::optional<dynobj::core::SensorModel> model;
-  if (sensor.isSet()) model = dynobj::core::SensorModel::fromFile(sensor.getValue());
+  if (sensor.isSet()) model = dynobj::io::readSensorModel(sensor.getValue());
   const std::string dir = out.getValue();
   dynobj::apps::ensureDirectory(dir);
 

@@ -3,6 +3,7 @@
 // JSON) -> a stock MRPT rawlog that every dynobj tool reads without a sensor option
 // (dynobj::mrptio::importRecording; docs/usage.md, docs/formats.md "Importers").
 #include <dynobj/core/SensorModel.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/RecordingImporter.h>
 #include <unistd.h>
 
@@ -50,7 +51,7 @@ int run(int argc, char** argv) {
   o.poses = poses.getValue();
   o.rate = rate.getValue();
   o.sensor_label = label.getValue();
-  if (sensor.isSet()) o.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
+  if (sensor.isSet()) o.sensor = dynobj::io::readSensorModel(sensor.getValue());
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto progress = [&](std::size_t done, std::size_t total) {
     if (!tty) return;

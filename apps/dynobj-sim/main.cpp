@@ -30,7 +30,7 @@ int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-sim: simulate a labelled LiDAR sequence", ' ', "0.1");
   TCLAP::ValueArg<std::string> scenario("s", "scenario", "Scenario YAML file", true, "",
                                         "file.yaml", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out", "Output folder", true, "", "dir", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Output folder", true, "dir", "out");
   TCLAP::ValueArg<int> frames("n", "frames", "Number of sweeps (overrides the scenario)", false, 0,
                               "N", cmd);
   TCLAP::ValueArg<unsigned> seed("", "seed", "Random seed (overrides the scenario)", false, 0, "S",

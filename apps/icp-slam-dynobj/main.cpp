@@ -3,6 +3,7 @@
 // filter applied to every observation before the map builder sees it. Configured by a
 // [DynamicObjects] section of the .ini; without that section it behaves exactly like icp-slam.
 #include <dynobj/core/Config.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/DynamicObjectFilter.h>
 #include <mrpt/apps/ICP_SLAM_App.h>
 
@@ -43,7 +44,7 @@ std::optional<dynobj::mrptio::DynamicObjectFilter> filterFrom(
         "[DynamicObjects] mode: only 'drop' and 'mark' make sense inside icp-slam");
   o.sensor_label = dynobj::core::readString(c, s, "sensor_label", "");
   const std::string preset = dynobj::core::readString(c, s, "sensor", "");
-  if (!preset.empty()) o.sensor = dynobj::core::SensorModel::fromFile(preset);
+  if (!preset.empty()) o.sensor = dynobj::io::readSensorModel(preset);
   o.detector.load(c, "DynamicObjects_");
   return dynobj::mrptio::DynamicObjectFilter(std::move(o));
 }

@@ -102,20 +102,6 @@ SequenceFiles SequenceFiles::prepare(const std::string& input, const std::string
   return locate(dir);
 }
 
-const std::set<std::string>& RunOptions::modes() {
-  static const std::set<std::string> m{"intensity", "gt-ego", "drift", "mrpt-distance"};
-  return m;
-}
-
-std::string RunOptions::describe(const std::string& mode, const DriftParams& drift) {
-  if (mode == "intensity") return "this detector, own intensity ego-motion (no odometry)";
-  if (mode == "gt-ego") return "this detector, ground-truth ego-motion (upper bound)";
-  if (mode == "drift") return "this detector, drifting odometry (" + drift.toString() + ")";
-  if (mode == "mrpt-distance")
-    return "MRPT CPointCloudFilterByDistance (defaults), ground-truth poses";
-  return mode;
-}
-
 RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   if (!RunOptions::modes().count(opts.mode))
     throw EvaluationError("unknown mode '" + opts.mode + "'");

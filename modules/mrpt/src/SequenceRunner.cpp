@@ -39,7 +39,7 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
         throw std::runtime_error(source_.describe() + " holds several LiDARs ('" + first_label_ +
                                  "', '" + f.sensor_label + "'): choose one with --sensor-label");
     }
-    FrameResult r{f};
+    FrameResult r{f, nullptr, nullptr, std::nullopt, nullptr, 0};
     if (truth_) r.truth = &truth_->sweep(f.frame, f.index, &r.truth_index);
     r.pose = poseOf(f);
     if (r.pose) {

@@ -4,6 +4,7 @@
 // points leave, the rest keep their order and per-point fields, stock insertion sees the rest,
 // split gets the removed ones, and through DynamicObjectFilter the classes take the same path.
 #include <dynobj/core/SensorModel.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/DynamicObjectFilter.h>
 #include <dynobj/mrptio/ObservationConverter.h>
 #include <dynobj/mrptio/ObservationTagging.h>
@@ -12,6 +13,8 @@
 #include <mrpt/maps/CSimplePointsMap.h>
 
 #include <cmath>
+
+#include "MapInsertion.h"
 
 namespace dm = dynobj::mrptio;
 namespace mobs = mrpt::obs;
@@ -31,13 +34,6 @@ std::vector<std::uint8_t> everyThird(std::size_t n) {
   std::vector<std::uint8_t> m(n, 0);
   for (std::size_t i = 0; i < n; i += 3) m[i] = 1;
   return m;
-}
-
-std::size_t inserted(const mobs::CObservation& o) {
-  mrpt::maps::CSimplePointsMap map;
-  map.insertionOptions.minDistBetweenLaserPoints = 0;
-  map.insertObservation(o);
-  return map.size();
 }
 
 std::shared_ptr<mobs::CObservationPointCloud> ringCloud() {
@@ -78,7 +74,7 @@ TEST(PointTagging, VelodyneDropRemovesExactlyTheFlaggedPointsAndSplitGetsThem) {
   float x, y, z;
   removed.getPoint(1, x, y, z);  // the second flagged point is input point 3
   EXPECT_EQ(x, before.x[3]);
-  EXPECT_EQ(inserted(*v), n - flagged);                          // what a stock point map inserts
+  EXPECT_EQ(dynobj::test::insertedPoints(*v), n - flagged);      // what a stock point map inserts
   EXPECT_THROW(dm::dropDynamic(*v, mask), dm::ConversionError);  // the mask no longer fits
 }
 
@@ -101,8 +97,7 @@ TEST(PointTagging, PointCloudDropRemovesExactlyTheFlaggedPointsAndSplitGetsThem)
 TEST(PointTagging, FilterSplitsVelodyneScansAndPointCloudsThroughTheClassTable) {
   dm::DynamicObjectFilter::Options opts;
   opts.mode = dm::FilterMode::Split;
-  opts.sensor =
-      dynobj::core::SensorModel::fromFile(std::string(DYNOBJ_SHARE_DIR) + "/sensors/vlp-16.ini");
+  opts.sensor = dynobj::io::readSensorModel(std::string(DYNOBJ_SHARE_DIR) + "/sensors/vlp-16.ini");
   dm::DynamicObjectFilter filter(opts);
   std::vector<mobs::CObservation::Ptr> extra;
   mobs::CObservation::Ptr velo = vlp16(), cloud = ringCloud();

@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "MapInsertion.h"
 #include "SerializationRoundTrip.h"
 
 using namespace dynobj;
@@ -57,13 +58,6 @@ cv::Mat_<std::uint8_t> someMask() {
   return m;
 }
 
-std::size_t inserted(const mobs::CObservation3DRangeScan& o) {
-  mrpt::maps::CSimplePointsMap map;
-  map.insertionOptions.minDistBetweenLaserPoints = 0;
-  map.insertObservation(o);
-  return map.size();
-}
-
 }  // namespace
 
 TEST(RangeScanTagging, MarkSetsTheDynamicBitAndKeepsOtherLabels) {
@@ -99,7 +93,7 @@ TEST(RangeScanTagging, DropRemovesExactlyTheFlaggedPointsAndRestoreGivesThemBack
   EXPECT_EQ(st.points_removed, 13u);
   EXPECT_EQ(o.points3D_x.size(), 512u - 13u);
   EXPECT_EQ(o.points3D_idxs_y.size(), o.points3D_x.size());
-  EXPECT_EQ(inserted(o), 512u - 13u);  // what a stock point map inserts
+  EXPECT_EQ(dynobj::test::insertedPoints(o), 512u - 13u);  // what a stock point map inserts
   EXPECT_EQ(o.rangeImage(3, 11), 0);
   EXPECT_EQ(dm::rangeLayer(o, dm::kDynamicLayer)(3, 11), original.rangeImage(3, 11));
   for (std::size_t i = 0; i < o.points3D_x.size(); i++)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Converters on the real scans that MRPT ships in /usr/share/mrpt/datasets (package mrpt-common).
 #include <dynobj/core/SensorModel.h>
+#include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/ObservationConverter.h>
 #include <dynobj/mrptio/RawlogReader.h>
 #include <gtest/gtest.h>
@@ -32,7 +33,7 @@ mrpt::obs::CObservation::Ptr firstObservation(const std::string& file) {
 }
 
 SensorModel preset(const std::string& name) {
-  return SensorModel::fromFile(std::string(DYNOBJ_SHARE_DIR) + "/sensors/" + name);
+  return dynobj::io::readSensorModel(std::string(DYNOBJ_SHARE_DIR) + "/sensors/" + name);
 }
 
 double medianElevationDeg(const LidarFrame& f, int row) {

@@ -2,6 +2,7 @@
 #include "dynobj/sim/Scenario.h"
 
 #include <dynobj/core/Config.h>
+#include <dynobj/io/SensorFile.h>
 #include <mrpt/containers/yaml.h>
 
 #include <cmath>
@@ -101,7 +102,7 @@ class Loader {
     const std::string rel = root.str("sensor", "sensors/os0-64.ini");
     const std::string path = rel.front() == '/' ? rel : share_ + "/" + rel;
     try {
-      s_.sensor = core::SensorModel::fromFile(path);
+      s_.sensor = io::readSensorModel(path);
     } catch (const std::exception& e) {
       (root.has("sensor") ? root.child("sensor") : root).fail(e.what());
     }
