@@ -33,6 +33,7 @@ struct SequenceOptions {
   /// A second sensor label is an error (implied by ground truth): outputs of one sensor.
   bool single_sensor = false;
   std::size_t max_frames = std::numeric_limits<std::size_t>::max();
+  bool require_frames = true;  ///< a source without any frame is an error
 };
 
 /// What the callback gets for each frame (valid during the call only).
@@ -53,8 +54,8 @@ class SequenceRunner {
   SequenceRunner(FrameSource& source, SequenceOptions opts);
 
   /// Runs to the end of the source (or max_frames) and returns the number of frames. Throws
-  /// std::runtime_error when there was none, a frame has no pose or ground-truth sweep, or (one
-  /// sensor) a second LiDAR label shows up.
+  /// std::runtime_error when there was none (require_frames), a frame has no pose or ground-truth
+  /// sweep, or (one sensor) a second LiDAR label shows up.
   std::size_t run(const std::function<void(const FrameResult&)>& on_frame);
 
   const std::optional<GroundTruth>& groundTruth() const { return truth_; }
