@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The whole detector on simulated sequences (cross-module: sim -> rawlog -> mrpt -> core).
 #include <dynobj/core/DynamicObjectDetector.h>
-#include <dynobj/core/LabelFile.h>
-#include <dynobj/core/Metrics.h>
-#include <dynobj/core/TumFile.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
-#include <dynobj/mrpt/PointCloudFilterAdapter.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/eval/Metrics.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/io/PoseFile.h>
+#include <dynobj/mrptio/PointCloudFilterAdapter.h>
+#include <dynobj/mrptio/PoseConversion.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <gtest/gtest.h>
 #include <mrpt/maps/CSimplePointsMap.h>
@@ -22,7 +23,7 @@ namespace {
 const std::string kSample = std::string(DYNOBJ_SOURCE_DIR) + "/rawlogs/hall-small/hall-small";
 
 struct RunResult {
-  core::Confusion confusion;
+  eval::Confusion confusion;
   std::vector<double> motion_errors;  ///< |translation error| of the ego-motion per frame [m]
   int ego_ok = 0, frames = 0;
 };
@@ -30,16 +31,16 @@ struct RunResult {
 /// Runs the detector over the committed sample; `external`: use ground-truth poses.
 RunResult runSample(bool external) {
   RunResult out;
-  const auto truth = core::LabelFile::read(kSample + ".gt.labels");
-  const auto poses = core::readTumFile(kSample + ".gt.tum");
-  dynobj::mrpt::LidarObservationStream stream(
-      kSample + ".rawlog", dynobj::mrpt::ObservationConverter(), {"LIDAR", 0, 1000000});
+  const auto truth = io::LabelFile::read(kSample + ".gt.labels");
+  const auto poses = io::readPoseFile(kSample + ".gt.tum", io::PoseFormat::Tum);
+  dynobj::mrptio::RawlogFrameSource stream(
+      kSample + ".rawlog", dynobj::mrptio::ObservationConverter(), {"LIDAR", 0, 1000000});
   core::DynamicObjectDetector det;
-  dynobj::mrpt::LidarObservationStream::Item item;
-  const core::StampedPose* prev = nullptr;
+  dynobj::mrptio::Frame item;
+  const io::TimedPose* prev = nullptr;
   while (stream.next(item)) {
     const auto& f = item.frame;
-    const auto* pose = core::findPose(poses, f.timestamp_ns);
+    const auto* pose = io::findPose(poses, f.timestamp_ns);
     EXPECT_NE(pose, nullptr);
     std::optional<Eigen::Isometry3d> true_motion;
     if (prev) true_motion = prev->pose.inverse() * pose->pose;
@@ -120,12 +121,12 @@ TEST(Detector, BehindMrptsPointCloudFilterInterface) {
   const sim::LidarSimulator simu(sim::Scenario::fromYamlFile(
       std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml", DYNOBJ_SHARE_DIR,
       {{"frames", "30"}, {"sensor", "sensors/os0-64-512.ini"}}));
-  dynobj::mrpt::PointCloudFilterAdapter adapter(simu.scenario().sensor);
-  ::mrpt::maps::CPointCloudFilterBase& filter = adapter;  // used through MRPT's interface
+  dynobj::mrptio::PointCloudFilterAdapter adapter(simu.scenario().sensor);
+  mrpt::maps::CPointCloudFilterBase& filter = adapter;  // used through MRPT's interface
   std::size_t flagged = 0, correct = 0;
   for (int k = 0; k < 30; k++) {
     const auto sweep = simu.simulate(k);
-    ::mrpt::maps::CSimplePointsMap cloud;
+    mrpt::maps::CSimplePointsMap cloud;
     std::vector<int> pixel;  // pixel of each point, to score against ground truth
     for (int r = 0; r < sweep.frame.rows(); r++)
       for (int c = 0; c < sweep.frame.cols(); c++)
@@ -136,11 +137,10 @@ TEST(Detector, BehindMrptsPointCloudFilterInterface) {
         }
     const std::size_t before = cloud.size();
     std::vector<bool> del;
-    ::mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
+    mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
     extra.out_deletion_mask = &del;
-    const auto pose = ::mrpt::poses::CPose3D::FromHomogeneousMatrix(
-        ::mrpt::math::CMatrixDouble44(sweep.sensor_pose.matrix()));
-    filter.filter(&cloud, dynobj::mrpt::fromUnixNs(sweep.timestamp_ns), pose, &extra);
+    const auto pose = dynobj::mrptio::toCPose3D(sweep.sensor_pose);
+    filter.filter(&cloud, dynobj::mrptio::fromUnixNs(sweep.timestamp_ns), pose, &extra);
     ASSERT_EQ(del.size(), before);
     const auto n = static_cast<std::size_t>(std::count(del.begin(), del.end(), true));
     EXPECT_EQ(cloud.size(), before - n);  // deleted exactly the flagged points

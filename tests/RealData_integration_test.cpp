@@ -7,8 +7,8 @@
 #include <dynobj/eval/EgoMotionCheck.h>
 #include <dynobj/io/CloudFolder.h>
 #include <dynobj/io/PoseFile.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
-#include <dynobj/mrpt/RecordingImporter.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/RecordingImporter.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +18,7 @@
 namespace core = dynobj::core;
 namespace eval = dynobj::eval;
 namespace io = dynobj::io;
-namespace dmrpt = dynobj::mrpt;
+namespace dmrpt = dynobj::mrptio;
 namespace fs = std::filesystem;
 
 namespace {
@@ -28,8 +28,8 @@ const std::string kCity = kReal + "/kitti-hdl64-city-22";
 const std::string kOuster = kReal + "/ouster";
 const std::string kShare = DYNOBJ_SHARE_DIR;
 
-#define SKIP_WITHOUT(dir)                                                                  \
-  if (!fs::is_directory(dir))                                                              \
+#define SKIP_WITHOUT(dir)     \
+  if (!fs::is_directory(dir)) \
   GTEST_SKIP() << dir << " not found: real-data test skipped (see ../shared/realdata/README.md)"
 
 std::string imported(const dmrpt::ImportOptions& o, const std::string& name) {
@@ -79,8 +79,8 @@ TEST(RealHdl64, ImportedRawlogNeedsNoSensorOption) {
   dmrpt::ImportOptions o;
   o.input = kCity;
   const std::string rawlog = imported(o, "city22.rawlog");
-  dmrpt::LidarObservationStream stream(rawlog, dmrpt::ObservationConverter(), {});
-  dmrpt::LidarObservationStream::Item item;
+  dmrpt::RawlogFrameSource stream(rawlog, dmrpt::ObservationConverter(), {});
+  dmrpt::Frame item;
   int frames = 0;
   while (stream.next(item)) {
     EXPECT_EQ(item.frame.rows(), 64);
@@ -96,8 +96,8 @@ TEST(RealHdl64, EgoMotionAtCarSpeedAgreesWithIcp) {
   dmrpt::ImportOptions o;
   o.input = kCity;
   const std::string rawlog = imported(o, "city22-ego.rawlog");
-  dmrpt::LidarObservationStream stream(rawlog, dmrpt::ObservationConverter(), {});
-  dmrpt::LidarObservationStream::Item item;
+  dmrpt::RawlogFrameSource stream(rawlog, dmrpt::ObservationConverter(), {});
+  dmrpt::Frame item;
   core::DynamicObjectDetector det;
   eval::EgoMotionCheck check;
   while (stream.next(item)) check.add(item.frame, det.process(item.frame).ego_motion);
@@ -117,8 +117,8 @@ TEST(RealOuster, MovingOs1128EgoMotionMatchesTheSdkPoses) {
   const std::string rawlog = imported(o, "os1-128.rawlog");
   const auto poses = io::readPoseFile(kOuster + "/OS-1-128_v2.3.0_1024x10_lb_n3_poses_kitti.txt");
   ASSERT_EQ(poses.size(), 3u);
-  dmrpt::LidarObservationStream stream(rawlog, dmrpt::ObservationConverter(), {});
-  dmrpt::LidarObservationStream::Item item;
+  dmrpt::RawlogFrameSource stream(rawlog, dmrpt::ObservationConverter(), {});
+  dmrpt::Frame item;
   core::DynamicObjectDetector det;
   std::size_t k = 0;
   while (stream.next(item)) {

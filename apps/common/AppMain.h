@@ -28,6 +28,28 @@ inline std::optional<int> parseCommandLine(TCLAP::CmdLine& cmd, int argc, char**
   return 2;
 }
 
+/// -o/--output, the app's output (a file, or a folder for many files), as in every dynobj app and
+/// MRPT's own; `old_name` (e.g. "out-dir") is the app's earlier long spelling, still accepted.
+class OutputArg {
+ public:
+  OutputArg(TCLAP::CmdLine& cmd, const std::string& desc, bool required, const std::string& type,
+            const std::string& old_name, const std::string& fallback = "")
+      : out_("o", "output", desc, required, fallback, type),
+        old_("", old_name, "Same as --output (earlier spelling)", required, fallback, type) {
+    if (old_name.empty())
+      cmd.add(out_);
+    else if (required)
+      cmd.xorAdd(out_, old_);
+    else
+      cmd.add(out_), cmd.add(old_);
+  }
+  bool isSet() const { return out_.isSet() || old_.isSet(); }
+  const std::string& getValue() const { return old_.isSet() ? old_.getValue() : out_.getValue(); }
+
+ private:
+  mutable TCLAP::ValueArg<std::string> out_, old_;  // TCLAP's getters are not const
+};
+
 /// Creates `dir` (and its parents) if missing; throws naming it when that is impossible.
 inline void ensureDirectory(const std::string& dir) {
   std::error_code ec;

@@ -2,15 +2,14 @@
 // dynobj-bench: times the detector per stage on synthetic frames (the simulator, in process, any
 // sensor preset), printing median and 99th percentile. For a recorded rawlog use dynobj-detect,
 // which prints the same table.
-#include <dynobj/core/DynamicObjectDetector.h>
 #include <dynobj/core/TimingStats.h>
-#include <dynobj/sim/LidarSimulator.h>
-#include <mrpt/config/CConfigFile.h>
+#include <dynobj/eval/SimulatedFrames.h>
+#include <dynobj/mrptio/SequenceRunner.h>
 
 #include <cstdio>
 #include <iostream>
 
-#include "../common/AppMain.h"
+#include "../common/AppOptions.h"
 
 namespace {
 
@@ -38,18 +37,14 @@ int run(int argc, char** argv) {
   if (sensor.isSet()) overrides["sensor"] = sensor.getValue();
   const dynobj::sim::LidarSimulator sim(dynobj::sim::Scenario::fromYamlFile(
       scenario.isSet() ? scenario.getValue() : share + "/scenarios/hall.yaml", share, overrides));
-  dynobj::core::DetectorParams params;
-  if (config.isSet()) {
-    ::mrpt::config::CConfigFile cfg(config.getValue());
-    params.load(cfg);
-  }
-  dynobj::core::DynamicObjectDetector detector(params);
+  dynobj::eval::SimulatedFrames frames_in(sim);  // simulated in next(): not timed
+  dynobj::mrptio::SequenceOptions so;
+  so.detector = dynobj::apps::loadDetectorParams(config.getValue());
   dynobj::core::TimingStats stats;
-  for (int k = 0; k < sim.scenario().frames; k++) {
-    const auto sweep = sim.simulate(k);  // not timed: only the detector's own stage timings count
-    const auto& r = detector.process(sweep.frame);
-    if (k >= warmup.getValue()) stats.add(r.timings);
-  }
+  dynobj::mrptio::SequenceRunner(frames_in, so).run([&](const dynobj::mrptio::FrameResult& fr) {
+    if (fr.frame.index >= static_cast<std::size_t>(warmup.getValue()))
+      stats.add(fr.detection->timings);  // only the detector's own stage timings count
+  });
   const auto& s = sim.scenario();
   std::printf("dynobj-bench: %s, %dx%d (%s), %zu frames after %d warm-up frames, one thread\n",
               s.name.c_str(), s.sensor.rows, s.sensor.cols, s.sensor.model.c_str(), stats.frames(),

@@ -4,34 +4,18 @@
 //   --run <scenario.yaml | sequence dir | file.rawlog>: simulate if needed, run the detector and
 //         the baselines, evaluate, report.
 //   --gt <file.labels> --pred <file.labels>: evaluate existing label files.
-#include <dynobj/core/AtomicFile.h>
-#include <dynobj/core/FrameImages.h>
-#include <dynobj/core/LabelFile.h>
 #include <dynobj/eval/ExperimentRunner.h>
-#include <dynobj/eval/Overlay.h>
-#include <dynobj/eval/Report.h>
-#include <mrpt/config/CConfigFile.h>
+#include <dynobj/eval/ReportFolder.h>
+#include <dynobj/io/LabelFile.h>
 #include <unistd.h>
 
-#include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <sstream>
 
-#include "../common/AppMain.h"
+#include "../common/AppOptions.h"
 
 namespace {
 
 using namespace dynobj;
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 std::string commandLine(int argc, char** argv) {
   std::string c = "dynobj-eval";
@@ -39,35 +23,9 @@ std::string commandLine(int argc, char** argv) {
   return c;
 }
 
-/// Evenly spaced sweep indices (skipping the first window, where nothing can be flagged yet).
-std::set<int> overlaySweeps(int count, std::size_t frames) {
-  std::set<int> out;
-  const int first = std::min<int>(10, static_cast<int>(frames) - 1);
-  for (int i = 0; i < count; i++)
-    out.insert(first + static_cast<int>((static_cast<double>(i) + 0.5) / count *
-                                        (static_cast<double>(frames) - first)));
-  return out;
-}
-
 void writeOutputs(const std::string& dir, const std::string& title, const std::string& command,
                   const std::vector<eval::RunResult>& runs) {
-  const std::string table = eval::markdownTable(runs);
-  std::cout << table;
-  core::writeFileAtomically(dir + "/summary.md", table);
-  eval::writeJsonSummary(dir + "/summary.json", runs);
-  std::vector<std::pair<std::string, cv::Mat>> sheet;
-  for (const auto& r : runs) {
-    eval::writeSweepCsv(dir + "/" + r.sequence + "." + r.mode + ".sweeps.csv", r);
-    for (const auto& [sweep, img] : r.overlays) {
-      char name[32];
-      std::snprintf(name, sizeof(name), ".sweep-%04d.png", sweep);
-      core::writePng(dir + "/overlays/" + r.sequence + "." + r.mode + name, img);
-      sheet.emplace_back(r.sequence + " " + r.mode + ", sweep " + std::to_string(sweep), img);
-    }
-  }
-  if (!sheet.empty())
-    core::writePng(dir + "/overlays/contact-sheet.png", eval::contactSheet(sheet));
-  eval::writeHtmlReport(dir + "/report.html", title, command, runs);
+  std::cout << eval::writeReportFolder(dir, title, command, runs);
   std::cerr << "[dynobj-eval] report: " << dir << "/report.html (and summary.md, summary.json, "
             << "*.sweeps.csv, overlays/)\n";
 }
@@ -83,7 +41,7 @@ int run(int argc, char** argv) {
                                   "file.labels", cmd);
   TCLAP::ValueArg<std::string> pred("", "pred", "Predicted label file (with --gt)", false, "",
                                     "file.labels", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out", "Report folder", true, "", "dir", cmd);
+  const apps::OutputArg out(cmd, "Report folder", true, "dir", "out");
   TCLAP::ValueArg<std::string> modes("", "modes",
                                      "Comma-separated: intensity, gt-ego, drift, mrpt-distance "
                                      "(default: all four when ground-truth poses exist)",
@@ -119,59 +77,26 @@ int run(int argc, char** argv) {
   const std::string command = commandLine(argc, argv);
 
   if (gt.isSet()) {  // existing files: metrics only (no frames, so no overlays or timings)
-    eval::RunResult r;
-    r.mode = "files";
-    r.description = std::filesystem::path(pred.getValue()).filename().string();
-    r.sequence = std::filesystem::path(gt.getValue()).filename().string();
-    r.sequence = r.sequence.substr(0, r.sequence.find('.'));  // hall.gt.labels -> hall
-    const core::LabelFile truth = core::LabelFile::read(gt.getValue());
-    const core::LabelFile predicted = core::LabelFile::read(pred.getValue());
-    r.metrics = eval::SequenceMetrics::compute(truth, predicted);
-    r.rows = truth.rows;
-    r.cols = truth.cols;
-    writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command, {r});
+    writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command,
+                 {eval::scoreLabelFiles(gt.getValue(), pred.getValue())});
     return 0;
   }
 
   eval::RunOptions opts;
-  if (config.isSet()) {
-    ::mrpt::config::CConfigFile cfg(config.getValue());
-    opts.params.load(cfg);
-  }
+  opts.params = apps::loadDetectorParams(config.getValue());
   if (drift.isSet()) opts.drift = eval::DriftParams::parse(drift.getValue());
   opts.sensor_label = label.getValue();
   opts.min_object_points = min_points.getValue();
   if (frames.getValue() > 0) opts.max_frames = static_cast<std::size_t>(frames.getValue());
   const eval::SequenceFiles seq = eval::SequenceFiles::prepare(run_in.getValue(), out.getValue(),
                                                                apps::shareDir(), frames.getValue());
-  std::vector<std::string> mode_list = splitList(modes.getValue());
-  if (mode_list.empty())
-    mode_list = seq.poses.empty()
-                    ? std::vector<std::string>{"intensity"}
-                    : std::vector<std::string>{"intensity", "gt-ego", "drift", "mrpt-distance"};
-  for (const auto& m : mode_list)
-    if (!eval::RunOptions::modes().count(m))
-      throw std::invalid_argument("--modes: unknown mode '" + m +
-                                  "' (intensity, gt-ego, drift, mrpt-distance)");
+  const auto mode_list = eval::RunOptions::parseModes(modes.getValue(), !seq.poses.empty());
   const std::size_t n_sweeps =
-      std::min(opts.max_frames, core::LabelFile::read(seq.labels).sweeps.size());
-  opts.overlay_sweeps = overlaySweeps(std::max(0, overlays.getValue()), n_sweeps);
-  if (overlay_list.isSet()) {
-    opts.overlay_sweeps.clear();
-    for (const auto& item : splitList(overlay_list.getValue())) {
-      std::size_t used = 0;
-      int k = -1;
-      try {
-        k = std::stoi(item, &used);
-      } catch (const std::exception&) {
-      }
-      if (used != item.size() || k < 0 || static_cast<std::size_t>(k) >= n_sweeps)
-        throw std::invalid_argument("--overlay-sweeps: '" + item +
-                                    "' is not a sweep index in [0, " +
-                                    std::to_string(n_sweeps - 1) + "]");
-      opts.overlay_sweeps.insert(k);
-    }
-  }
+      std::min(opts.max_frames, io::LabelFile::read(seq.labels).sweeps.size());
+  opts.overlay_sweeps =
+      overlay_list.isSet()
+          ? eval::RunOptions::parseSweeps(overlay_list.getValue(), n_sweeps)
+          : eval::RunOptions::evenlySpacedSweeps(std::max(0, overlays.getValue()), n_sweeps);
 
   std::vector<eval::RunResult> runs;
   const bool tty = isatty(STDERR_FILENO) != 0;

@@ -2,13 +2,15 @@
 // dynobj-frames: converts the LiDAR observations of a rawlog into LiDAR frames and writes their
 // range and intensity images as PNG, with one line of statistics per frame.
 #include <dynobj/core/FrameImages.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
+#include <dynobj/io/Png.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/SequenceRunner.h>
 
 #include <cstdio>
 #include <iostream>
 #include <optional>
 
-#include "../common/AppMain.h"
+#include "../common/AppOptions.h"
 
 namespace {
 
@@ -16,14 +18,9 @@ int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-frames: write the range/intensity images of a rawlog's LiDAR scans",
                      ' ', "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "file.rawlog", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out-dir", "Output directory (created if missing)", false,
-                                   ".", "dir", cmd);
-  TCLAP::ValueArg<std::string> sensor("", "sensor",
-                                      "Sensor preset INI (share/dynobj/sensors/*.ini); needed for "
-                                      "point clouds and rotating scans",
-                                      false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this sensor label", false, "",
-                                     "label", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Output directory (created if missing)", false, "dir",
+                                    "out-dir", ".");
+  dynobj::apps::SensorArgs sensor(cmd);
   TCLAP::ValueArg<std::size_t> from("", "from", "First entry index", false, 0, "N", cmd);
   TCLAP::ValueArg<std::size_t> to("", "to", "Last entry index (inclusive)", false,
                                   std::numeric_limits<std::size_t>::max(), "N", cmd);
@@ -36,34 +33,32 @@ int run(int argc, char** argv) {
     return 2;
   }
 
-  std::optional<dynobj::core::SensorModel> model;
-  if (sensor.isSet()) model = dynobj::core::SensorModel::fromFile(sensor.getValue());
   const std::string dir = out.getValue();
   dynobj::apps::ensureDirectory(dir);
 
-  dynobj::mrpt::LidarObservationStream stream(in.getValue(),
-                                              dynobj::mrpt::ObservationConverter(model),
-                                              {label.getValue(), from.getValue(), to.getValue()});
-  dynobj::mrpt::LidarObservationStream::Item item;
-  std::size_t frames = 0;
-  while (stream.next(item)) {
+  dynobj::mrptio::RawlogFrameSource stream(in.getValue(), sensor.converter(),
+                                           {sensor.label(), from.getValue(), to.getValue()});
+  dynobj::mrptio::SequenceOptions so;
+  so.detect = false;  // frames only
+  so.require_frames = false;
+  const std::size_t frames = dynobj::mrptio::SequenceRunner(stream, so).run([&](const auto& r) {
+    const dynobj::mrptio::Frame& item = r.frame;
     char name[64];
     std::snprintf(name, sizeof(name), "_%06zu_", item.entry);
-    const std::string prefix = dir + "/" + item.observation->sensorLabel + name;
-    dynobj::core::writeFramePngs(item.frame, prefix, row_scale.getValue());
+    const std::string prefix = dir + "/" + item.sensor_label + name;
+    dynobj::io::writeFramePngs(item.frame, prefix, row_scale.getValue());
     if (!quiet.isSet())
-      std::cout << "entry " << item.entry << " '" << item.observation->sensorLabel << "' "
+      std::cout << "entry " << item.entry << " '" << item.sensor_label << "' "
                 << item.observation->GetRuntimeClass()->className << ": " << item.frame.rows()
                 << "x" << item.frame.cols() << ", " << item.stats.toString()
                 << (item.frame.has_intensity ? "" : ", no intensity (range image used)") << "\n"
                 << "  -> " << prefix << "range.png, " << prefix << "intensity.png\n";
-    frames++;
-  }
+  });
   if (frames == 0) {
     std::string seen;
     for (const auto& [l, cls] : stream.labelsSeen()) seen += " '" + l + "' (" + cls + ")";
     throw std::runtime_error(
-        "no LiDAR observation" + (label.isSet() ? " with label '" + label.getValue() + "'" : "") +
+        "no LiDAR observation" + (sensor.labelSet() ? " with label '" + sensor.label() + "'" : "") +
         " in '" + in.getValue() + "'; labels seen:" + (seen.empty() ? " none" : seen));
   }
   std::cout << "dynobj-frames: " << frames << " frame(s) from " << stream.entriesRead()

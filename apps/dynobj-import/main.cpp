@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-import: a recording (folder of PCD / KITTI .bin sweeps, or an Ouster pcap + metadata
 // JSON) -> a stock MRPT rawlog that every dynobj tool reads without a sensor option
-// (dynobj::mrpt::importRecording; docs/usage.md, docs/formats.md "Importers").
+// (dynobj::mrptio::importRecording; docs/usage.md, docs/formats.md "Importers").
 #include <dynobj/core/SensorModel.h>
-#include <dynobj/mrpt/RecordingImporter.h>
+#include <dynobj/io/SensorFile.h>
+#include <dynobj/mrptio/RecordingImporter.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -26,8 +27,8 @@ int run(int argc, char** argv) {
                                      "Folder: one time per sweep (KITTI times.txt or "
                                      "timestamps.txt, or ns); default: --rate",
                                      false, "", "file", cmd);
-  TCLAP::ValueArg<double> rate("", "rate", "Folder without --times: sweeps per second", false,
-                               10.0, "Hz", cmd);
+  TCLAP::ValueArg<double> rate("", "rate", "Folder without --times: sweeps per second", false, 10.0,
+                               "Hz", cmd);
   TCLAP::ValueArg<std::string> poses("", "poses",
                                      "Poses (KITTI 3x4 rows or TUM), one per sweep: written as "
                                      "CObservationOdometry",
@@ -43,14 +44,14 @@ int run(int argc, char** argv) {
 
   if (std::filesystem::exists(out.getValue()) && !overwrite.isSet())
     throw std::runtime_error("'" + out.getValue() + "' exists; use -w to replace it");
-  dynobj::mrpt::ImportOptions o;
+  dynobj::mrptio::ImportOptions o;
   o.input = in.getValue();
   o.meta = meta.getValue();
   o.times = times.getValue();
   o.poses = poses.getValue();
   o.rate = rate.getValue();
   o.sensor_label = label.getValue();
-  if (sensor.isSet()) o.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
+  if (sensor.isSet()) o.sensor = dynobj::io::readSensorModel(sensor.getValue());
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto progress = [&](std::size_t done, std::size_t total) {
     if (!tty) return;
@@ -59,7 +60,7 @@ int run(int argc, char** argv) {
     else
       std::fprintf(stderr, "\r  sweep %zu", done);
   };
-  const auto s = dynobj::mrpt::importRecording(o, out.getValue(), progress);
+  const auto s = dynobj::mrptio::importRecording(o, out.getValue(), progress);
   if (tty) std::fprintf(stderr, "\n");
   std::printf(
       "dynobj-import: %zu sweeps of %dx%d from %s -> '%s'\n  rows from: %s; intensity: %s\n  "

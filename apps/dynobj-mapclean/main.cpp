@@ -1,24 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-mapclean: builds a static map without ghost trails (and the moving objects' map) from a
 // rawlog or a KTH DynamicMap folder; optional benchmark export and map-level metrics.
-#include <dynobj/core/SensorModel.h>
 #include <dynobj/mapclean/MapCleanJob.h>
-#include <mrpt/config/CConfigFile.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <iostream>
 
-#include "../common/AppMain.h"
+#include "../common/AppOptions.h"
 
 namespace {
-
-std::string pct(const std::optional<double>& v) {
-  if (!v) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof(b), "%.2f%%", 100.0 * *v);
-  return b;
-}
 
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-mapclean: a static map without the trails of moving objects", ' ',
@@ -26,8 +16,8 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> in("i", "input",
                                   "Input: a .rawlog, or a KTH DynamicMap folder (pcd/*.pcd)", true,
                                   "", "in", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out-dir", "Output folder (created if missing)", true, "",
-                                   "dir", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Output folder (created if missing)", true, "dir",
+                                    "out-dir");
   TCLAP::ValueArg<std::string> poses(
       "", "poses", "Pose source: odometry | ego | viewpoint | file.tum | file.simplemap", false,
       "odometry", "source", cmd);
@@ -46,10 +36,7 @@ int run(int argc, char** argv) {
       "", "level-poses",
       "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
   TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
-  TCLAP::ValueArg<std::string> sensor("", "sensor", "Sensor preset INI (PCD folders, point clouds)",
-                                      false, "", "file.ini", cmd);
-  TCLAP::ValueArg<std::string> label("", "sensor-label", "Only this LiDAR", false, "", "label",
-                                     cmd);
+  dynobj::apps::SensorArgs sensor(cmd);
   TCLAP::ValueArg<std::string> gt("", "gt",
                                   "Ground truth for SA/DA/AA: label file v1, or gt_cloud.pcd",
                                   false, "", "file", cmd);
@@ -72,17 +59,15 @@ int run(int argc, char** argv) {
   o.pose_options.tolerance_s = pose_tol.getValue();
   o.pose_options.tum_robot_poses = tum_robot.getValue();
   if (config.isSet()) {
-    ::mrpt::config::CConfigFile cfg(config.getValue());
-    o.detector.load(cfg);
-    o.clean.loadFromConfigFile(cfg, "mapclean");
+    o.detector = dynobj::apps::loadDetectorParams(config.getValue());
+    o.clean.loadFromConfigFile(mrpt::config::CConfigFile(config.getValue()), "mapclean");
   }
   if (voxel.isSet()) o.clean.voxel_size = voxel.getValue();
   if (single.isSet()) o.clean.second_pass = false;
   if (level.isSet()) o.clean.level_poses = true;
   o.clean.validate();
-  if (sensor.isSet())
-    o.scan_options.sensor = dynobj::core::SensorModel::fromFile(sensor.getValue());
-  o.scan_options.sensor_label = label.getValue();
+  o.scan_options.sensor = sensor.model();
+  o.scan_options.sensor_label = sensor.label();
   o.ground_truth = gt.getValue();
   o.tolerance = tol.getValue();
   o.export_kth = kth.getValue();
@@ -104,29 +89,7 @@ int run(int argc, char** argv) {
   };
   const auto s = dynobj::mapclean::runMapClean(o, progress);
   if (tty) std::cerr << "\n";
-  std::printf("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
-              o.clean.level_poses ? " (leveled with the floor)" : "",
-              o.clean.second_pass ? "two passes" : "single pass");
-  std::printf(
-      "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
-      "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "
-      "check\n",
-      s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
-      s.backfilled, s.voted, s.seen_through);
-  if (o.write_simplemap) std::printf("  cleaned simplemap: %zu keyframes\n", s.keyframes);
-  if (!o.export_kth.empty())
-    std::printf("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames,
-                s.exported_points, o.export_kth.c_str());
-  if (s.scores) {
-    const auto& m = *s.scores;
-    std::printf(
-        "  SA %s  DA %s  AA %s  ghost points %zu  (GT static %zu kept %zu, GT dynamic %zu removed "
-        "%zu, "
-        "tolerance %.3f m)\n",
-        pct(m.sa()).c_str(), pct(m.da()).c_str(), pct(m.aa()).c_str(), m.ghost_points, m.gt_static,
-        m.static_kept, m.gt_dynamic, m.dynamic_removed, o.tolerance);
-  }
-  std::printf("  %.1f s -> %s\n", s.seconds, o.out_dir.c_str());
+  std::cout << dynobj::mapclean::summaryText(s, o);
   return 0;
 }
 

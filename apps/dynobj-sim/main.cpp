@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-sim: simulates a labelled LiDAR sequence from a scenario file (docs/simulator.md).
 #include <dynobj/core/FrameImages.h>
+#include <dynobj/io/Png.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <dynobj/sim/TopView.h>
@@ -31,7 +32,7 @@ int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-sim: simulate a labelled LiDAR sequence", ' ', "0.1");
   TCLAP::ValueArg<std::string> scenario("s", "scenario", "Scenario YAML file", true, "",
                                         "file.yaml", cmd);
-  TCLAP::ValueArg<std::string> out("o", "out", "Output folder", true, "", "dir", cmd);
+  const dynobj::apps::OutputArg out(cmd, "Output folder", true, "dir", "out");
   TCLAP::ValueArg<int> frames("n", "frames", "Number of sweeps (overrides the scenario)", false, 0,
                               "N", cmd);
   TCLAP::ValueArg<unsigned> seed("", "seed", "Random seed (overrides the scenario)", false, 0, "S",
@@ -87,8 +88,8 @@ int run(int argc, char** argv) {
     if (k == preview.getValue()) {
       const cv::Mat img =
           dynobj::core::overlayMask(dynobj::core::intensityToU8(sweep.frame), sweep.dynamic);
-      dynobj::core::writePng(out.getValue() + "/" + s.name + ".preview.png",
-                             dynobj::core::scaleRows(img, 2));
+      dynobj::io::writePng(out.getValue() + "/" + s.name + ".preview.png",
+                           dynobj::core::scaleRows(img, 2));
     }
     path.push_back(sweep.sensor_pose.translation());
     if (k == topview.getValue())

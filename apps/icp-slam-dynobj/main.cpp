@@ -3,7 +3,8 @@
 // filter applied to every observation before the map builder sees it. Configured by a
 // [DynamicObjects] section of the .ini; without that section it behaves exactly like icp-slam.
 #include <dynobj/core/Config.h>
-#include <dynobj/mrpt/DynamicObjectFilter.h>
+#include <dynobj/io/SensorFile.h>
+#include <dynobj/mrptio/DynamicObjectFilter.h>
 #include <mrpt/apps/ICP_SLAM_App.h>
 
 #include <iostream>
@@ -15,7 +16,7 @@ namespace {
 
 class IcpSlamDynobj : public mrpt::apps::ICP_SLAM_App_Rawlog {
  public:
-  std::optional<dynobj::mrpt::DynamicObjectFilter> filter;
+  std::optional<dynobj::mrptio::DynamicObjectFilter> filter;
 
  protected:
   bool impl_get_next_observations(mrpt::obs::CActionCollection::Ptr& actions,
@@ -32,20 +33,20 @@ class IcpSlamDynobj : public mrpt::apps::ICP_SLAM_App_Rawlog {
 
 /// [DynamicObjects] enabled, mode (drop | mark), sensor_label, sensor (preset path); detector
 /// parameters in sections [DynamicObjects_foreground], [DynamicObjects_movement], ...
-std::optional<dynobj::mrpt::DynamicObjectFilter> filterFrom(
+std::optional<dynobj::mrptio::DynamicObjectFilter> filterFrom(
     const mrpt::config::CConfigFileBase& c) {
   const std::string s = "DynamicObjects";
   if (!c.sectionExists(s) || !dynobj::core::readBool(c, s, "enabled", true)) return std::nullopt;
-  dynobj::mrpt::DynamicObjectFilter::Options o;
-  o.mode = dynobj::mrpt::parseFilterMode(dynobj::core::readString(c, s, "mode", "drop"));
-  if (o.mode != dynobj::mrpt::FilterMode::Drop && o.mode != dynobj::mrpt::FilterMode::Mark)
+  dynobj::mrptio::DynamicObjectFilter::Options o;
+  o.mode = dynobj::mrptio::parseFilterMode(dynobj::core::readString(c, s, "mode", "drop"));
+  if (o.mode != dynobj::mrptio::FilterMode::Drop && o.mode != dynobj::mrptio::FilterMode::Mark)
     throw dynobj::core::ParameterError(
         "[DynamicObjects] mode: only 'drop' and 'mark' make sense inside icp-slam");
   o.sensor_label = dynobj::core::readString(c, s, "sensor_label", "");
   const std::string preset = dynobj::core::readString(c, s, "sensor", "");
-  if (!preset.empty()) o.sensor = dynobj::core::SensorModel::fromFile(preset);
+  if (!preset.empty()) o.sensor = dynobj::io::readSensorModel(preset);
   o.detector.load(c, "DynamicObjects_");
-  return dynobj::mrpt::DynamicObjectFilter(std::move(o));
+  return dynobj::mrptio::DynamicObjectFilter(std::move(o));
 }
 
 }  // namespace
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
     app.filter = filterFrom(app.params);
     std::cout << "icp-slam-dynobj: dynamic-object filter "
               << (app.filter ? std::string("on (mode ") +
-                                   dynobj::mrpt::toString(app.filter->options().mode) + ")"
+                                   dynobj::mrptio::toString(app.filter->options().mode) + ")"
                              : std::string("off (no [DynamicObjects] section): stock icp-slam"))
               << std::endl;
     app.run();

@@ -1,18 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Embedding the filter in your own MRPT app: every observation goes through the filter (drop
 // mode: dynamic points removed) before it is inserted into a point map.
-#include <dynobj/mrpt/DynamicObjectFilter.h>
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/mrptio/DynamicObjectFilter.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 
 #include <iostream>
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
-  dynobj::mrpt::DynamicObjectFilter filter({dynobj::mrpt::FilterMode::Drop, "", std::nullopt, {}});
+  dynobj::mrptio::DynamicObjectFilter filter(
+      {dynobj::mrptio::FilterMode::Drop, "", std::nullopt, {}});
   mrpt::maps::CSimplePointsMap map;
-  dynobj::mrpt::RawlogReader rawlog(argv[1]);
-  for (dynobj::mrpt::RawlogEntry e; rawlog.next(e);)
+  dynobj::mrptio::RawlogReader rawlog(argv[1]);
+  for (dynobj::mrptio::RawlogEntry e; rawlog.next(e);)
     for (auto& obs : e.observations()) {
       filter.filter(obs);           // tags / removes the moving objects' points in place
       map.insertObservation(*obs);  // stock MRPT insertion sees the static points only

@@ -2,8 +2,8 @@
 // Test tool: two rawlogs have the same entries, and every non-LiDAR observation (and every
 // action collection) is byte-for-byte the same once serialized.
 //   compare_rawlogs <a.rawlog> <b.rawlog>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -25,8 +25,8 @@ std::vector<unsigned char> bytes(const mrpt::serialization::CSerializable& o) {
 int main(int argc, char** argv) {
   if (argc != 3) return 2;
   try {
-    dynobj::mrpt::RawlogReader a(argv[1]), b(argv[2]);
-    dynobj::mrpt::RawlogEntry ea, eb;
+    dynobj::mrptio::RawlogReader a(argv[1]), b(argv[2]);
+    dynobj::mrptio::RawlogEntry ea, eb;
     std::size_t compared = 0, lidar = 0;
     for (;;) {
       const bool ma = a.next(ea), mb = b.next(eb);
@@ -44,11 +44,12 @@ int main(int argc, char** argv) {
       const auto oa = ea.observations(), ob = eb.observations();
       std::size_t j = 0;
       for (const auto& o : oa) {
-        if (dynobj::mrpt::ObservationConverter::isLidarObservation(*o)) {
+        if (dynobj::mrptio::ObservationConverter::isLidarObservation(*o)) {
           lidar++;
           continue;
         }
-        while (j < ob.size() && dynobj::mrpt::ObservationConverter::isLidarObservation(*ob[j])) j++;
+        while (j < ob.size() && dynobj::mrptio::ObservationConverter::isLidarObservation(*ob[j]))
+          j++;
         if (j >= ob.size() || bytes(*o) != bytes(*ob[j])) {
           std::printf("entry %zu: observation '%s' differs\n", ea.index, o->sensorLabel.c_str());
           return 1;

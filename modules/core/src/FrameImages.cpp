@@ -3,9 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <stdexcept>
 #include <vector>
 
 namespace dynobj::core {
@@ -77,18 +75,7 @@ cv::Mat scaleRows(const cv::Mat& image, int row_scale) {
   return out;
 }
 
-void writePng(const std::string& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, image);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error("cannot write '" + path + "': " + e.what());
-  }
-  if (!ok)
-    throw std::runtime_error("cannot write '" + path + "' (directory missing or not writable?)");
-}
-
-void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_scale) {
+cv::Mat rangeToColor(const LidarFrame& frame) {
   // Colour scale: the 98th percentile of the frame's ranges, so indoor and outdoor scans both use
   // the whole colour map.
   std::vector<float> ranges;
@@ -96,9 +83,7 @@ void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_
   for (int r = 0; r < frame.rows(); r++)
     for (int c = 0; c < frame.cols(); c++)
       if (frame.isValid(r, c)) ranges.push_back(frame.range(r, c));
-  const double scale = ranges.empty() ? frame.sensor.max_range : percentile(ranges, 98.0);
-  writePng(prefix + "range.png", scaleRows(rangeToColor(frame, scale), row_scale));
-  writePng(prefix + "intensity.png", scaleRows(intensityToU8(frame), row_scale));
+  return rangeToColor(frame, ranges.empty() ? frame.sensor.max_range : percentile(ranges, 98.0));
 }
 
 }  // namespace dynobj::core

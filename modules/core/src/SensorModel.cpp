@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/SensorModel.h"
 
-#include <mrpt/config/CConfigFile.h>
-#include <mrpt/system/filesystem.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -84,21 +81,6 @@ void SensorModel::validate() const {
       if (sorted[i] == sorted[i - 1])
         throwParameterError("beam_elevations", "two beams share the same elevation");
   }
-}
-
-SensorModel SensorModel::fromFile(const std::string& ini_path, const std::string& section) {
-  if (!::mrpt::system::fileExists(ini_path))
-    throw ParameterError("sensor file '" + ini_path + "' does not exist");
-  ::mrpt::config::CConfigFile cfg(ini_path);
-  if (!cfg.sectionExists(section))
-    throw ParameterError(ini_path + ": section [" + section + "] not found");
-  SensorModel m;
-  try {
-    m.loadFromConfigFile(cfg, section);
-  } catch (const ParameterError& e) {
-    throw ParameterError(ini_path + ": [" + section + "] " + e.what());
-  }
-  return m;
 }
 
 std::vector<double> SensorModel::rowElevations() const {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/EgoMotionCheck.h"
 
+#include <dynobj/mrptio/PoseConversion.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPose3DPDF.h>
@@ -22,30 +23,18 @@ double quantile(std::vector<double> v, double q) {
   return v[k];
 }
 
-Eigen::Isometry3d toIsometry(const ::mrpt::poses::CPose3D& p) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.matrix() = p.getHomogeneousMatrixVal<::mrpt::math::CMatrixDouble44>().asEigen();
-  return t;
-}
-
-::mrpt::poses::CPose3D toPose(const Eigen::Isometry3d& t) {
-  ::mrpt::math::CMatrixDouble44 m;
-  m.asEigen() = t.matrix();
-  return ::mrpt::poses::CPose3D(m);
-}
-
 }  // namespace
 
 struct EgoMotionCheck::Impl {
   double voxel;
-  ::mrpt::slam::CICP icp;
-  std::unique_ptr<::mrpt::maps::CSimplePointsMap> previous;
+  mrpt::slam::CICP icp;
+  std::unique_ptr<mrpt::maps::CSimplePointsMap> previous;
   Eigen::Isometry3d velocity = Eigen::Isometry3d::Identity();  ///< ICP's last motion (the seed)
   bool first_pair = true;
 
   /// One point per voxel (the first met), valid pixels only.
-  std::unique_ptr<::mrpt::maps::CSimplePointsMap> thin(const core::LidarFrame& f) const {
-    auto map = std::make_unique<::mrpt::maps::CSimplePointsMap>();
+  std::unique_ptr<mrpt::maps::CSimplePointsMap> thin(const core::LidarFrame& f) const {
+    auto map = std::make_unique<mrpt::maps::CSimplePointsMap>();
     std::unordered_set<std::uint64_t> seen;
     for (int r = 0; r < f.rows(); r++)
       for (int c = 0; c < f.cols(); c++) {
@@ -87,12 +76,12 @@ void EgoMotionCheck::add(const core::LidarFrame& frame, const core::EgoMotion& e
   if (ego.ok) s.ego_ok++;
   // Seed: ICP's own previous motion (constant velocity); a wide first gate on the first pair.
   impl_->icp.options.thresholdDist = impl_->first_pair ? 2.0 : 1.0;
-  ::mrpt::slam::CICP::TReturnInfo info;
+  mrpt::slam::CICP::TReturnInfo info;
   const auto pdf = impl_->icp.Align3D(impl_->previous.get(), current.get(),
-                                      toPose(impl_->velocity), info);
+                                      mrptio::toCPose3D(impl_->velocity), info);
   const bool icp_ok = pdf && info.goodness >= 0.3;
   if (icp_ok) {
-    const Eigen::Isometry3d icp_motion = toIsometry(pdf->getMeanVal());
+    const Eigen::Isometry3d icp_motion = mrptio::toIsometry(pdf->getMeanVal());
     impl_->velocity = icp_motion;
     impl_->first_pair = false;
     s.icp_ok++;
@@ -118,8 +107,8 @@ std::string EgoMotionAgreement::toString() const {
                 "agree within %.2f m / %.1f deg on %d (%.1f %%); difference translation median "
                 "%.3f m p95 %.3f m, rotation median %.3f deg p95 %.3f deg; ICP speed median "
                 "%.2f m/frame",
-                ego_ok, pairs, pct(ego_ok, pairs), icp_ok, compared, max_translation,
-                max_rotation, agree, pct(agree, compared), quantile(translation_diff, 0.5),
+                ego_ok, pairs, pct(ego_ok, pairs), icp_ok, compared, max_translation, max_rotation,
+                agree, pct(agree, compared), quantile(translation_diff, 0.5),
                 quantile(translation_diff, 0.95), quantile(rotation_diff, 0.5),
                 quantile(rotation_diff, 0.95), quantile(icp_speed, 0.5));
   return buf;

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/ExperimentRunner.h"
 
-#include <dynobj/core/LabelFile.h>
-#include <dynobj/core/TumFile.h>
-#include <dynobj/mrpt/LidarObservationStream.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/mrptio/PoseConversion.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/SequenceRunner.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <mrpt/maps/CPointCloudFilterByDistance.h>
@@ -41,14 +42,11 @@ class MrptDistanceFilter {
           pixel_.push_back(r * f.cols() + c);
         }
     std::vector<bool> deleted;
-    ::mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
+    mrpt::maps::CPointCloudFilterBase::TExtraFilterParams extra;
     extra.out_deletion_mask = &deleted;
     extra.do_not_delete = true;
-    ::mrpt::math::CMatrixDouble44 T;
-    for (int i = 0; i < 4; i++)
-      for (int j = 0; j < 4; j++) T(i, j) = sensor_in_world.matrix()(i, j);
-    filter_.filter(&cloud_, dynobj::mrpt::fromUnixNs(f.timestamp_ns),
-                   ::mrpt::poses::CPose3D::FromHomogeneousMatrix(T), &extra);
+    filter_.filter(&cloud_, mrptio::fromUnixNs(f.timestamp_ns), mrptio::toCPose3D(sensor_in_world),
+                   &extra);
     mask.create(f.rows(), f.cols());
     mask.setTo(0);
     for (std::size_t i = 0; i < deleted.size() && i < pixel_.size(); i++)
@@ -56,8 +54,8 @@ class MrptDistanceFilter {
   }
 
  private:
-  ::mrpt::maps::CPointCloudFilterByDistance filter_;
-  ::mrpt::maps::CSimplePointsMap cloud_;
+  mrpt::maps::CPointCloudFilterByDistance filter_;
+  mrpt::maps::CSimplePointsMap cloud_;
   std::vector<int> pixel_;
 };
 
@@ -104,20 +102,6 @@ SequenceFiles SequenceFiles::prepare(const std::string& input, const std::string
   return locate(dir);
 }
 
-const std::set<std::string>& RunOptions::modes() {
-  static const std::set<std::string> m{"intensity", "gt-ego", "drift", "mrpt-distance"};
-  return m;
-}
-
-std::string RunOptions::describe(const std::string& mode, const DriftParams& drift) {
-  if (mode == "intensity") return "this detector, own intensity ego-motion (no odometry)";
-  if (mode == "gt-ego") return "this detector, ground-truth ego-motion (upper bound)";
-  if (mode == "drift") return "this detector, drifting odometry (" + drift.toString() + ")";
-  if (mode == "mrpt-distance")
-    return "MRPT CPointCloudFilterByDistance (defaults), ground-truth poses";
-  return mode;
-}
-
 RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   if (!RunOptions::modes().count(opts.mode))
     throw EvaluationError("unknown mode '" + opts.mode + "'");
@@ -125,15 +109,12 @@ RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   if (needs_poses && seq.poses.empty())
     throw EvaluationError("mode '" + opts.mode + "' needs ground-truth poses (" + seq.name +
                           ".gt.tum)");
-  const core::LabelFile truth = core::LabelFile::read(seq.labels);
-  std::optional<core::LabelFile> instances;
+  std::optional<io::LabelFile> instances;
   std::optional<GroundTruthObjects> objects;
   if (!seq.instances.empty() && !seq.objects.empty()) {
-    instances = core::LabelFile::read(seq.instances);
+    instances = io::LabelFile::read(seq.instances);
     objects = GroundTruthObjects::read(seq.objects);
   }
-  std::vector<core::StampedPose> poses;
-  if (needs_poses) poses = core::readTumFile(seq.poses);
 
   RunResult res;
   res.mode = opts.mode;
@@ -142,69 +123,48 @@ RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {
   if (instances) res.objects.emplace(opts.min_object_points);
   if (opts.mode != "mrpt-distance") res.timing.emplace();
 
-  dynobj::mrpt::LidarObservationStream stream(
-      seq.rawlog, dynobj::mrpt::ObservationConverter(),
-      {opts.sensor_label, 0, std::numeric_limits<std::size_t>::max()});
-  core::DynamicObjectDetector detector(opts.params);
-  MrptDistanceFilter mrpt_filter;
   DriftModel drift(opts.drift);
-  dynobj::mrpt::LidarObservationStream::Item item;
+  mrptio::SequenceOptions so;
+  so.detector = opts.params;
+  so.detect = opts.mode != "mrpt-distance";
+  if (needs_poses) so.poses = seq.poses;
+  if (opts.mode == "drift")
+    so.motion_model = [&](const Eigen::Isometry3d& m) { return drift.corrupt(m); };
+  so.ground_truth = seq.labels;
+  so.max_frames = opts.max_frames;
+  mrptio::RawlogFrameSource source(seq.rawlog, mrptio::ObservationConverter(),
+                                   {opts.sensor_label, 0, std::numeric_limits<std::size_t>::max()});
+  MrptDistanceFilter mrpt_filter;
   cv::Mat_<std::uint8_t> baseline_mask;
-  const core::StampedPose* prev_pose = nullptr;
-  std::size_t k = 0;
-  for (; k < opts.max_frames && stream.next(item); k++) {
-    const core::LidarFrame& f = item.frame;
-    if (k >= truth.sweeps.size() || truth.sweeps[k].timestamp_ns != f.timestamp_ns)
-      throw EvaluationError(seq.labels +
-                            ": no ground-truth sweep at t = " + std::to_string(f.timestamp_ns) +
-                            " ns (scan " + std::to_string(k) + ")");
-    if (truth.rows != f.rows() || truth.cols != f.cols())
-      throw EvaluationError(seq.labels + ": ground truth is " + std::to_string(truth.rows) + "x" +
-                            std::to_string(truth.cols) + " but the scans are " +
-                            std::to_string(f.rows()) + "x" + std::to_string(f.cols()));
-    const core::StampedPose* pose = nullptr;
-    std::optional<Eigen::Isometry3d> motion;
-    if (needs_poses) {
-      pose = core::findPose(poses, f.timestamp_ns);
-      if (!pose)
-        throw EvaluationError(seq.poses + ": no pose at t = " + std::to_string(f.timestamp_ns) +
-                              " ns");
-      if (prev_pose) motion = prev_pose->pose.inverse() * pose->pose;
-      if (motion && opts.mode == "drift") motion = drift.corrupt(*motion);
-      prev_pose = pose;
-    }
-    const cv::Mat_<std::uint8_t>* predicted = nullptr;
-    const std::vector<core::TrackedObject>* tracked = nullptr;
-    double ms = -1;
-    if (opts.mode == "mrpt-distance") {
-      mrpt_filter.process(f, pose->pose, baseline_mask);
-      predicted = &baseline_mask;
+  mrptio::SequenceRunner(source, so).run([&](const mrptio::FrameResult& fr) {
+    const core::LidarFrame& f = fr.frame.frame;
+    const std::size_t k = fr.frame.index;
+    const cv::Mat_<std::uint8_t>* predicted = &baseline_mask;
+    const core::DetectionResult* r = fr.detection;
+    if (r) {
+      predicted = &r->dynamic;
+      res.timing->add(r->timings);
+      if (k > 0 && !r->ego_motion.ok) res.ego_failed++;
     } else {
-      const core::DetectionResult& r = detector.process(f, motion);
-      predicted = &r.dynamic;
-      tracked = &r.objects;
-      ms = r.timings.total;
-      res.timing->add(r.timings);
-      if (k > 0 && !r.ego_motion.ok) res.ego_failed++;
+      mrpt_filter.process(f, fr.pose->pose, baseline_mask);
     }
-    const std::vector<std::uint32_t> pred = core::pixelsOfMask(*predicted);
-    res.metrics.add(f.timestamp_ns, truth.sweeps[k].pixels, pred, cv::countNonZero(f.valid), ms);
+    const std::vector<std::uint32_t> pred = io::pixelsOfMask(*predicted);
+    res.metrics.add(f.timestamp_ns, fr.truth->pixels, pred, cv::countNonZero(f.valid),
+                    r ? r->timings.total : -1);
     if (res.objects) {
-      if (k >= instances->sweeps.size() || k >= objects->sweeps.size())
+      if (fr.truth_index >= instances->sweeps.size() || fr.truth_index >= objects->sweeps.size())
         throw EvaluationError(seq.instances + ": fewer sweeps than the rawlog");
-      res.objects->add(instances->sweeps[k], pred, objects->sweeps[k]);
+      res.objects->add(instances->sweeps[fr.truth_index], pred, objects->sweeps[fr.truth_index]);
     }
     if (opts.overlay_sweeps.count(static_cast<int>(k)))
-      res.overlays.emplace_back(
-          static_cast<int>(k),
-          overlayImage(f, *predicted, maskOfPixels(truth.sweeps[k].pixels, f.rows(), f.cols()),
-                       tracked ? *tracked : std::vector<core::TrackedObject>{}));
+      res.overlays.emplace_back(static_cast<int>(k),
+                                overlayImage(f, *predicted, fr.truthMask(),
+                                             r ? r->objects : std::vector<core::TrackedObject>{}));
     res.rows = f.rows();
     res.cols = f.cols();
     res.rate_hz = f.sensor.frequency;
     if (opts.progress) opts.progress(k + 1);
-  }
-  if (k == 0) throw EvaluationError("no LiDAR observation in '" + seq.rawlog + "'");
+  });
   return res;
 }
 

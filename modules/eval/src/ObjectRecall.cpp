@@ -66,8 +66,7 @@ std::optional<double> ObjectTally::recall() const {
 ObjectRecall::ObjectRecall(int min_points, double min_flagged)
     : min_points_(min_points), min_flagged_(min_flagged) {}
 
-void ObjectRecall::add(const core::LabelSweep& instances,
-                       const std::vector<std::uint32_t>& predicted,
+void ObjectRecall::add(const io::LabelSweep& instances, const std::vector<std::uint32_t>& predicted,
                        const GroundTruthObjects::Sweep& objects) {
   if (instances.timestamp_ns != objects.timestamp_ns)
     throw EvaluationError("instances at t = " + std::to_string(instances.timestamp_ns) +

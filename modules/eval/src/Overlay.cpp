@@ -8,18 +8,17 @@
 
 namespace dynobj::eval {
 
-cv::Mat_<std::uint8_t> maskOfPixels(const std::vector<std::uint32_t>& pixels, int rows, int cols) {
-  cv::Mat_<std::uint8_t> m(rows, cols, std::uint8_t{0});
-  for (std::uint32_t px : pixels) m(static_cast<int>(px) / cols, static_cast<int>(px) % cols) = 255;
-  return m;
-}
-
 cv::Mat overlayImage(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& predicted,
                      const cv::Mat_<std::uint8_t>& truth,
                      const std::vector<core::TrackedObject>& objects, int row_scale) {
-  cv::Mat img = core::overlayMask(core::intensityToU8(frame), predicted & truth, {0, 0, 255});
-  img.setTo(cv::Scalar(0, 255, 255), predicted & ~truth);  // false positive: yellow
-  img.setTo(cv::Scalar(255, 0, 0), truth & ~predicted);    // miss: blue
+  cv::Mat img;
+  if (truth.empty()) {
+    img = core::overlayMask(core::intensityToU8(frame), predicted, {0, 0, 255});
+  } else {
+    img = core::overlayMask(core::intensityToU8(frame), predicted & truth, {0, 0, 255});
+    img.setTo(cv::Scalar(0, 255, 255), predicted & ~truth);  // false positive: yellow
+    img.setTo(cv::Scalar(255, 0, 0), truth & ~predicted);    // miss: blue
+  }
   img = core::scaleRows(img, row_scale);
   if (img.cols < 1024) {  // narrow scans (512 columns): twice as large, pixels kept sharp
     cv::resize(img, img, {}, 2, 2, cv::INTER_NEAREST);

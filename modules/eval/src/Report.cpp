@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/Report.h"
 
-#include <dynobj/core/AtomicFile.h>
+#include <dynobj/io/AtomicFile.h>
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +90,7 @@ std::string base64(const std::vector<std::uint8_t>& data) {
   return out;
 }
 
-std::optional<double> metricOf(const core::Confusion& c, Metric m) {
+std::optional<double> metricOf(const eval::Confusion& c, Metric m) {
   switch (m) {
     case Metric::Precision:
       return c.precision();
@@ -197,7 +197,7 @@ std::string markdownTable(const std::vector<RunResult>& runs) {
        "median / p99 |\n"
     << "|---|---|---|---|---|---|---|---|---|\n";
   for (const RunResult& r : runs) {
-    const core::Confusion& c = r.metrics.total;
+    const eval::Confusion& c = r.metrics.total;
     s << "| " << r.sequence << " | " << r.description << " | " << opt(c.precision()) << " | "
       << opt(c.iou()) << " | " << opt(c.recall()) << " | " << opt(c.f1()) << " | "
       << objectRecall(r) << " | " << percent(r.metrics.staticFlagged()) << " | " << timing(r)
@@ -211,12 +211,12 @@ void writeSweepCsv(const std::string& path, const RunResult& run) {
   s << "sweep,timestamp_ns,tp,fp,fn,tn,precision,recall,iou,f1,ms\n";
   for (std::size_t i = 0; i < run.metrics.sweeps.size(); i++) {
     const SweepMetrics& sw = run.metrics.sweeps[i];
-    const core::Confusion& c = sw.counts;
+    const eval::Confusion& c = sw.counts;
     s << i << "," << sw.timestamp_ns << "," << c.tp << "," << c.fp << "," << c.fn << "," << c.tn
       << "," << opt(c.precision(), "") << "," << opt(c.recall(), "") << "," << opt(c.iou(), "")
       << "," << opt(c.f1(), "") << "," << (sw.ms >= 0 ? num(sw.ms, 3) : "") << "\n";
   }
-  core::writeFileAtomically(path, s.str());
+  io::writeFileAtomically(path, s.str());
 }
 
 void writeJsonSummary(const std::string& path, const std::vector<RunResult>& runs) {
@@ -224,7 +224,7 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
   s << "{\n  \"runs\": [";
   for (std::size_t k = 0; k < runs.size(); k++) {
     const RunResult& r = runs[k];
-    const core::Confusion& c = r.metrics.total;
+    const eval::Confusion& c = r.metrics.total;
     s << (k ? "," : "") << "\n    {\"sequence\": \"" << escapeJson(r.sequence) << "\", \"mode\": \""
       << escapeJson(r.mode) << "\", \"description\": \"" << escapeJson(r.description)
       << "\", \"sweeps\": " << r.metrics.sweeps.size() << ", \"rows\": " << r.rows
@@ -276,7 +276,7 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
     s << "}";
   }
   s << "\n  ]\n}\n";
-  core::writeFileAtomically(path, s.str());
+  io::writeFileAtomically(path, s.str());
 }
 
 void writeHtmlReport(const std::string& path, const std::string& title, const std::string& command,
@@ -296,7 +296,7 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
        "<th>sequence</th><th>method</th><th>precision</th><th>IoU</th><th>recall</th><th>F1</th>"
        "<th>object recall</th><th>static flagged</th><th>ms median / p99</th></tr>\n";
   for (const RunResult& r : runs) {
-    const core::Confusion& c = r.metrics.total;
+    const eval::Confusion& c = r.metrics.total;
     s << "<tr><td>" << escapeHtml(r.sequence) << "</td><td>" << escapeHtml(r.description)
       << "</td><td>" << opt(c.precision()) << "</td><td>" << opt(c.iou()) << "</td><td>"
       << opt(c.recall()) << "</td><td>" << opt(c.f1()) << "</td><td>" << objectRecall(r)
@@ -344,7 +344,7 @@ void writeHtmlReport(const std::string& path, const std::string& title, const st
        "document.getElementById('image-check').textContent=(ok==imgs.length?'':'WARNING: ')+ok+' "
        "of '+"
        "imgs.length+' images loaded';});</script>\n</body></html>\n";
-  core::writeFileAtomically(path, s.str());
+  io::writeFileAtomically(path, s.str());
 }
 
 }  // namespace dynobj::eval

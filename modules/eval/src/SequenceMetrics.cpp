@@ -31,8 +31,7 @@ double quantile(const std::vector<double>& v, double q) {
 
 }  // namespace
 
-SequenceMetrics SequenceMetrics::compute(const core::LabelFile& truth,
-                                         const core::LabelFile& pred) {
+SequenceMetrics SequenceMetrics::compute(const io::LabelFile& truth, const io::LabelFile& pred) {
   if (truth.rows != pred.rows || truth.cols != pred.cols)
     throw EvaluationError("ground truth is " + std::to_string(truth.rows) + "x" +
                           std::to_string(truth.cols) + " but the predictions are " +

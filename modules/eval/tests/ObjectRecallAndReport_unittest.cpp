@@ -14,14 +14,14 @@ using namespace dynobj::eval;
 namespace {
 
 std::string writeTemp(const std::string& text) {
-  const std::string p = ::mrpt::system::getTempFileName() + ".csv";
+  const std::string p = mrpt::system::getTempFileName() + ".csv";
   std::ofstream(p) << text;
   return p;
 }
 
-core::LabelSweep instances(std::int64_t t, std::vector<std::uint32_t> px,
-                           std::vector<std::int32_t> ids) {
-  core::LabelSweep s;
+io::LabelSweep instances(std::int64_t t, std::vector<std::uint32_t> px,
+                         std::vector<std::int32_t> ids) {
+  io::LabelSweep s;
   s.timestamp_ns = t;
   s.pixels = std::move(px);
   s.ids = std::move(ids);

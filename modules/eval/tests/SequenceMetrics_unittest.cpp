@@ -9,8 +9,8 @@ namespace {
 
 using Sweeps = std::vector<std::pair<std::int64_t, std::vector<std::uint32_t>>>;
 
-core::LabelFile file(const Sweeps& sweeps, int rows = 4, int cols = 8) {
-  core::LabelFile f;
+io::LabelFile file(const Sweeps& sweeps, int rows = 4, int cols = 8) {
+  io::LabelFile f;
   f.rows = rows;
   f.cols = cols;
   for (const auto& [t, pixels] : sweeps) {
@@ -21,7 +21,7 @@ core::LabelFile file(const Sweeps& sweeps, int rows = 4, int cols = 8) {
   return f;
 }
 
-std::string errorOf(const core::LabelFile& a, const core::LabelFile& b) {
+std::string errorOf(const io::LabelFile& a, const io::LabelFile& b) {
   try {
     SequenceMetrics::compute(a, b);
   } catch (const eval::EvaluationError& e) {

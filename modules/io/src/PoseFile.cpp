@@ -3,9 +3,11 @@
 #include "dynobj/io/PoseFile.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace dynobj::io {
@@ -108,6 +110,34 @@ std::vector<TimedPose> readPoseFile(const std::string& path, PoseFormat format) 
   }
   if (out.empty()) throwFormatError(path, "holds no pose");
   return out;
+}
+
+const TimedPose* findPose(const std::vector<TimedPose>& poses, std::int64_t t,
+                          std::int64_t tolerance_ns) {
+  const auto it =
+      std::lower_bound(poses.begin(), poses.end(), t,
+                       [](const TimedPose& p, std::int64_t v) { return p.timestamp_ns < v; });
+  const TimedPose* best = nullptr;
+  std::int64_t best_d = tolerance_ns + 1;
+  for (auto c : {it, it == poses.begin() ? it : it - 1})
+    if (c != poses.end() && std::llabs(c->timestamp_ns - t) < best_d) {
+      best = &*c;
+      best_d = std::llabs(c->timestamp_ns - t);
+    }
+  return best;
+}
+
+TumWriter::TumWriter(const std::string& path, const std::string& note) : file_(path) {
+  file_.stream() << "# timestamp tx ty tz qx qy qz qw  (" << note << ")\n";
+}
+
+void TumWriter::write(std::int64_t timestamp_ns, const Eigen::Isometry3d& pose) {
+  const Eigen::Quaterniond q(pose.linear());
+  const Eigen::Vector3d& t = pose.translation();
+  file_.stream() << timestamp_ns / 1000000000 << "." << std::setw(9) << std::setfill('0')
+                 << timestamp_ns % 1000000000 << std::setfill(' ') << std::fixed
+                 << std::setprecision(6) << " " << t.x() << " " << t.y() << " " << t.z() << " "
+                 << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
 }
 
 }  // namespace dynobj::io

@@ -12,7 +12,7 @@ namespace dynobj::mapclean {
 namespace fs = std::filesystem;
 
 KthExporter::KthExporter(std::string dir, bool with_ground_truth)
-    : dir_(std::move(dir)), partial_(core::partialName(dir_)) {
+    : dir_(std::move(dir)), partial_(io::partialName(dir_)) {
   if (fs::exists(dir_))
     throw std::runtime_error("export folder '" + dir_ + "' exists: remove it or choose another");
   std::error_code ec;

@@ -2,7 +2,7 @@
 #include "dynobj/mapclean/MapCleaner.h"
 
 #include <dynobj/core/Config.h>
-#include <dynobj/core/LabelFile.h>
+#include <dynobj/io/LabelFile.h>
 
 #include <algorithm>
 
@@ -17,11 +17,11 @@ void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("level_poses", level_poses);
   v.value("free_space_check", free_space_check);
   v.value("free_space_stride", free_space_stride);
-  v.value("free_space_margin", free_space_margin);
-  v.value("free_space_margin_rel", free_space_margin_rel);
-  v.value("free_space_window", free_space_window);
-  v.value("free_space_min_views", free_space_min_views);
-  v.value("free_space_ratio", free_space_ratio);
+  v.value("free_space_margin", visibility.margin);
+  v.value("free_space_margin_rel", visibility.margin_rel);
+  v.value("free_space_window", visibility.window);
+  v.value("free_space_min_views", visibility.min_views);
+  v.value("free_space_ratio", visibility.ratio);
 }
 
 void MapCleanParams::validate() const {
@@ -30,20 +30,15 @@ void MapCleanParams::validate() const {
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
   core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
   core::requireInRange("free_space_stride", free_space_stride, 1, 1000000);
-  core::requireInRange("free_space_margin", free_space_margin, 0.0, 100.0);
-  core::requireInRange("free_space_margin_rel", free_space_margin_rel, 0.0, 10.0);
-  core::requireInRange("free_space_window", free_space_window, 0, 100);
-  core::requireInRange("free_space_min_views", free_space_min_views, 1, 65535);
-  core::requireInRange("free_space_ratio", free_space_ratio, 0.0, 1000.0);
+  core::requireInRange("free_space_margin", visibility.margin, 0.0, 100.0);
+  core::requireInRange("free_space_margin_rel", visibility.margin_rel, 0.0, 10.0);
+  core::requireInRange("free_space_window", visibility.window, 0, 100);
+  core::requireInRange("free_space_min_views", visibility.min_views, 1, 65535);
+  core::requireInRange("free_space_ratio", visibility.ratio, 0.0, 1000.0);
 }
 
-FreeSpaceParams MapCleanParams::freeSpace() const {
-  FreeSpaceParams f;
-  f.margin = free_space_margin;
-  f.margin_rel = free_space_margin_rel;
-  f.window = free_space_window;
-  f.min_views = free_space_min_views;
-  f.ratio = free_space_ratio;
+VisibilityParams MapCleanParams::freeSpace() const {
+  VisibilityParams f = visibility;
   f.min_range = min_range;
   return f;
 }
@@ -63,7 +58,7 @@ FrameRecord MapCleaner::record(const core::DetectionResult& r,
   FrameRecord rec;
   rec.timestamp_ns = r.timestamp_ns;
   rec.sensor_pose = sensor_pose;
-  rec.dynamic_pixels = core::pixelsOfMask(r.dynamic);
+  rec.dynamic_pixels = io::pixelsOfMask(r.dynamic);
   for (const core::TrackedObject& o : r.objects) {
     rec.objects.push_back({o.id, o.dynamic, o.box_min.cast<float>(), o.box_max.cast<float>()});
     if (o.dynamic) confirmed_.insert(o.id);

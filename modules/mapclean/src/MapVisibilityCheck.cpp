@@ -42,7 +42,7 @@ void bump(std::uint16_t& n) {
 
 }  // namespace
 
-MapVisibilityCheck::MapVisibilityCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels)
+MapVisibilityCheck::MapVisibilityCheck(const VisibilityParams& p, std::vector<VoxelCentre> voxels)
     : p_(p), voxels_(std::move(voxels)), free_(voxels_.size(), 0), hit_(voxels_.size(), 0) {}
 
 MapVisibilityCheck::~MapVisibilityCheck() = default;

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/MrptOutputs.h"
 
-#include <dynobj/core/AtomicFile.h>
-#include <dynobj/mrpt/RangeScanLayout.h>
-#include <dynobj/mrpt/RangeScanTagging.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/io/AtomicFile.h>
+#include <dynobj/mrptio/ObservationTagging.h>
+#include <dynobj/mrptio/PoseConversion.h>
+#include <dynobj/mrptio/RangeScanLayout.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -14,8 +15,6 @@
 
 #include <cmath>
 #include <stdexcept>
-
-#include "PoseConversion.h"
 
 namespace dynobj::mapclean {
 
@@ -32,35 +31,34 @@ void CleanedSimplemapWriter::add(const Scan& scan, const cv::Mat_<std::uint8_t>&
   }
   have_last_ = true;
   last_ = sensor_pose;
-  auto obs = std::make_shared<::mrpt::obs::CObservation3DRangeScan>();
-  const auto* in =
-      dynamic_cast<const ::mrpt::obs::CObservation3DRangeScan*>(scan.observation.get());
+  auto obs = std::make_shared<mrpt::obs::CObservation3DRangeScan>();
+  const auto* in = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(scan.observation.get());
   if (in) {
     *obs = *in;
   } else {  // other LiDAR types (and PCD input): the organized layout of the frame
-    mrpt::frameToRangeScan(scan.frame, *obs);
+    mrptio::frameToRangeScan(scan.frame, *obs);
     obs->sensorLabel = scan.observation ? scan.observation->sensorLabel : std::string("LIDAR");
-    obs->timestamp = mrpt::fromUnixNs(scan.frame.timestamp_ns);
-    obs->sensorPose = detail::toCPose3D(scan.mount);
+    obs->timestamp = mrptio::fromUnixNs(scan.frame.timestamp_ns);
+    obs->sensorPose = mrptio::toCPose3D(scan.mount);
   }
-  mrpt::dropDynamic(*obs, dynamic_mask);
-  auto sf = std::make_shared<::mrpt::obs::CSensoryFrame>();
+  mrptio::dropDynamic(*obs, dynamic_mask);
+  auto sf = std::make_shared<mrpt::obs::CSensoryFrame>();
   sf->insert(obs);
-  const auto robot = detail::toCPose3D(sensor_pose * scan.mount.inverse());
-  map_.insert(std::make_shared<::mrpt::poses::CPose3DPDFGaussian>(robot), sf);
+  const auto robot = mrptio::toCPose3D(sensor_pose * scan.mount.inverse());
+  map_.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(robot), sf);
 }
 
 void CleanedSimplemapWriter::close() {
-  const std::string partial = core::partialName(path_);
+  const std::string partial = io::partialName(path_);
   if (!map_.saveToFile(partial)) {
     std::remove(partial.c_str());
     throw std::runtime_error("cannot write simplemap '" + partial + "'");
   }
-  core::commitPartial(path_);
+  io::commitPartial(path_);
 }
 
 void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& points) {
-  ::mrpt::maps::CPointsMapXYZI map;
+  mrpt::maps::CPointsMapXYZI map;
   map.resize(points.size());
   for (std::size_t i = 0; i < points.size(); i++) {
     map.setPointFast(i, points[i].x, points[i].y, points[i].z);
@@ -69,19 +67,19 @@ void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& p
   {
     const std::string file = base + ".pointsmap";
     {
-      ::mrpt::io::CFileGZOutputStream out;
-      if (!out.open(core::partialName(file)))
-        throw std::runtime_error("cannot write '" + core::partialName(file) + "'");
-      ::mrpt::serialization::archiveFrom(out) << map;
+      mrpt::io::CFileGZOutputStream out;
+      if (!out.open(io::partialName(file)))
+        throw std::runtime_error("cannot write '" + io::partialName(file) + "'");
+      mrpt::serialization::archiveFrom(out) << map;
     }
-    core::commitPartial(file);
+    io::commitPartial(file);
   }
   const std::string txt = base + ".txt";
-  if (!map.saveXYZI_to_text_file(core::partialName(txt))) {
-    std::remove(core::partialName(txt).c_str());
-    throw std::runtime_error("cannot write '" + core::partialName(txt) + "'");
+  if (!map.saveXYZI_to_text_file(io::partialName(txt))) {
+    std::remove(io::partialName(txt).c_str());
+    throw std::runtime_error("cannot write '" + io::partialName(txt) + "'");
   }
-  core::commitPartial(txt);
+  io::commitPartial(txt);
 }
 
 }  // namespace dynobj::mapclean

@@ -38,7 +38,7 @@ void PcdStreamWriter::close() {
 }
 
 void writePly(const std::string& path, const std::vector<MapPoint>& points) {
-  core::AtomicFile f(path);
+  io::AtomicFile f(path);
   f.stream() << "ply\nformat binary_little_endian 1.0\ncomment mrpt-dynobj dynobj-mapclean\n"
              << "element vertex " << points.size()
              << "\nproperty float x\nproperty float y\nproperty float z\nproperty float intensity\n"

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/PoseSource.h"
 
-#include <dynobj/core/TumFile.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/io/PoseFile.h>
+#include <dynobj/mrptio/PoseConversion.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/poses/CPose3DPDF.h>
 
@@ -11,8 +12,6 @@
 #include <filesystem>
 #include <map>
 #include <stdexcept>
-
-#include "PoseConversion.h"
 
 namespace dynobj::mapclean {
 namespace {
@@ -68,16 +67,16 @@ class ViewpointPoses : public PoseSource {
 /// Poses by timestamp; shared by the TUM and simplemap sources.
 class StampedPoses {
  public:
-  StampedPoses(std::string file, std::vector<core::StampedPose> poses, std::int64_t tol_ns)
+  StampedPoses(std::string file, std::vector<io::TimedPose> poses, std::int64_t tol_ns)
       : file_(std::move(file)), poses_(std::move(poses)), tol_(tol_ns) {
     std::sort(poses_.begin(), poses_.end(),
               [](const auto& a, const auto& b) { return a.timestamp_ns < b.timestamp_ns; });
     if (poses_.empty()) throw std::runtime_error("'" + file_ + "' holds no pose");
   }
-  const core::StampedPose* find(std::int64_t t) const { return core::findPose(poses_, t, tol_); }
+  const io::TimedPose* find(std::int64_t t) const { return io::findPose(poses_, t, tol_); }
   /// The latest pose before t, or null.
-  const core::StampedPose* before(std::int64_t t) const {
-    const core::StampedPose* best = nullptr;
+  const io::TimedPose* before(std::int64_t t) const {
+    const io::TimedPose* best = nullptr;
     for (const auto& p : poses_)
       if (p.timestamp_ns <= t) best = &p;
     return best;
@@ -89,7 +88,7 @@ class StampedPoses {
                                " poses, fewer than the scans: none for " + scanName(s) +
                                " (its last pose is at " + seconds(poses_.back().timestamp_ns) +
                                ")" + hint);
-    const auto* near = core::findPose(poses_, t, INT64_MAX / 4);
+    const auto* near = io::findPose(poses_, t, INT64_MAX / 4);
     throw std::runtime_error("'" + file_ + "': no pose within " + seconds(tol_) + " of " +
                              scanName(s) + " (nearest at " + seconds(near->timestamp_ns) +
                              "): the timestamps do not match" + hint);
@@ -98,14 +97,15 @@ class StampedPoses {
 
  private:
   std::string file_;
-  std::vector<core::StampedPose> poses_;
+  std::vector<io::TimedPose> poses_;
   std::int64_t tol_;
 };
 
 class TumPoses : public PoseSource {
  public:
   TumPoses(const std::string& file, const PoseSourceOptions& o)
-      : poses_(file, core::readTumFile(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)),
+      : poses_(file, io::readPoseFile(file, io::PoseFormat::Tum),
+               static_cast<std::int64_t>(o.tolerance_s * 1e9)),
         robot_(o.tum_robot_poses) {}
   Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
     const auto* p = poses_.find(s.frame.timestamp_ns);
@@ -119,16 +119,16 @@ class TumPoses : public PoseSource {
   bool robot_;
 };
 
-std::vector<core::StampedPose> simplemapKeyframes(const std::string& file) {
-  ::mrpt::maps::CSimpleMap sm;
+std::vector<io::TimedPose> simplemapKeyframes(const std::string& file) {
+  mrpt::maps::CSimpleMap sm;
   if (!sm.loadFromFile(file)) throw std::runtime_error("cannot read simplemap '" + file + "'");
-  std::vector<core::StampedPose> out;
+  std::vector<io::TimedPose> out;
   for (std::size_t i = 0; i < sm.size(); i++) {
     const auto [pdf, sf] = std::as_const(sm).get(i);
     if (!pdf || !sf || sf->size() == 0) continue;
-    core::StampedPose p;
-    p.timestamp_ns = mrpt::toUnixNs((*sf->begin())->timestamp);
-    p.pose = detail::toIsometry(pdf->getMeanVal());
+    io::TimedPose p;
+    p.timestamp_ns = mrptio::toUnixNs((*sf->begin())->timestamp);
+    p.pose = mrptio::toIsometry(pdf->getMeanVal());
     out.push_back(p);
   }
   return out;

@@ -4,86 +4,18 @@
 #include <dynobj/core/SphericalProjection.h>
 #include <dynobj/io/CloudFolder.h>
 #include <dynobj/io/PcdFile.h>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RawlogReader.h>
-#include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/poses/CPose3D.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
 
-#include "PoseConversion.h"
-
 namespace dynobj::mapclean {
 namespace {
 
 namespace fs = std::filesystem;
-
-using detail::toIsometry;
-
-class RawlogScans final : public ScanSource {
- public:
-  RawlogScans(std::string path, const ScanSourceOptions& o)
-      : path_(std::move(path)), opts_(o), converter_(o.sensor) {
-    rewind();
-  }
-  void rewind() override {
-    reader_ = std::make_unique<mrpt::RawlogReader>(path_);
-    pending_.clear();
-    pos_ = 0;
-    scans_ = 0;
-    odometry_.reset();
-  }
-  std::string describe() const override { return "rawlog '" + path_ + "'"; }
-
-  bool next(Scan& s) override {
-    for (;;) {
-      while (pos_ < pending_.size()) {
-        const auto obs = pending_[pos_++];
-        if (!obs) continue;
-        if (const auto* odo = dynamic_cast<const ::mrpt::obs::CObservationOdometry*>(obs.get())) {
-          odometry_ = toIsometry(::mrpt::poses::CPose3D(odo->odometry));
-          continue;
-        }
-        if (!mrpt::ObservationConverter::isLidarObservation(*obs)) continue;
-        if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) continue;
-        if (opts_.sensor_label.empty()) {  // one LiDAR per map: a second label is an error
-          if (first_label_.empty()) first_label_ = obs->sensorLabel;
-          if (obs->sensorLabel != first_label_)
-            throw std::runtime_error("'" + path_ + "' holds several LiDARs ('" + first_label_ +
-                                     "', '" + obs->sensorLabel +
-                                     "'): choose one with --sensor-label");
-        }
-        converter_.convert(*obs, s.frame);
-        ::mrpt::poses::CPose3D mount;
-        obs->getSensorPose(mount);
-        s.index = scans_++;
-        s.where = "'" + path_ + "' entry " + std::to_string(entry_.index);
-        s.mount = toIsometry(mount);
-        s.odometry = odometry_;
-        s.viewpoint.reset();
-        s.observation = obs;
-        return true;
-      }
-      if (!reader_->next(entry_)) return false;
-      pending_ = entry_.observations();
-      pos_ = 0;
-    }
-  }
-
- private:
-  std::string path_;
-  ScanSourceOptions opts_;
-  mrpt::ObservationConverter converter_;
-  std::unique_ptr<mrpt::RawlogReader> reader_;
-  mrpt::RawlogEntry entry_;
-  std::vector<::mrpt::obs::CObservation::Ptr> pending_;
-  std::size_t pos_ = 0, scans_ = 0;
-  std::optional<Eigen::Isometry3d> odometry_;
-  std::string first_label_;
-};
 
 class PcdFolderScans final : public ScanSource {
  public:
@@ -108,8 +40,9 @@ class PcdFolderScans final : public ScanSource {
     }
     projection_->project(cloud, s.frame);
     s.frame.timestamp_ns = timestampOf(pcd);
-    s.index = pos_++;
+    s.index = s.entry = pos_++;
     s.where = "'" + file + "'";
+    s.sensor_label.clear();
     s.mount = Eigen::Isometry3d::Identity();
     s.odometry.reset();
     s.viewpoint = pcd.viewpoint;
@@ -161,7 +94,9 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& input,
     throw std::runtime_error("input '" + input +
                              "': unknown format (expected a .rawlog file or a "
                              "KTH DynamicMap folder with pcd/NNNNNN.pcd)");
-  return std::make_unique<RawlogScans>(input, opts);
+  return std::make_unique<mrptio::RawlogFrameSource>(
+      input, mrptio::ObservationConverter(opts.sensor),
+      mrptio::RawlogFrameSource::Options{opts.sensor_label});
 }
 
 }  // namespace dynobj::mapclean

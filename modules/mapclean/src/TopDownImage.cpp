@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 namespace dynobj::mapclean {
 
@@ -41,7 +42,7 @@ TopDownView TopDownView::fit(const std::vector<MapPoint>& a, const std::vector<M
 }
 
 cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& static_points,
-                      const std::vector<MapPoint>& dynamic_points) {
+                      const std::vector<MapPoint>& dynamic_points, int dynamic_radius) {
   cv::Mat_<float> top(view.height, view.width, std::numeric_limits<float>::lowest());
   cv::Mat_<std::uint8_t> dyn(view.height, view.width, std::uint8_t{0});
   const auto cell = [&view](const MapPoint& p, int& r, int& c) {
@@ -65,6 +66,9 @@ cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& stat
         img.at<cv::Vec3b>(r, c) = cv::Vec3b(g, g, g);
       }
     }
+  if (dynamic_radius > 0)
+    for (const MapPoint& p : dynamic_points)
+      if (cell(p, r, c)) cv::circle(img, {c, r}, dynamic_radius, cv::Scalar(0, 0, 255), cv::FILLED);
   return img;
 }
 

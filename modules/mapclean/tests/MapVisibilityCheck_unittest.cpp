@@ -35,8 +35,8 @@ dynobj::core::LidarFrame frameAt(
   return mc::test::tinyFrame(pts);
 }
 
-mc::FreeSpaceParams params() {
-  mc::FreeSpaceParams p;
+mc::VisibilityParams params() {
+  mc::VisibilityParams p;
   p.margin = 0.3;
   p.margin_rel = 0.05;  // tolerance at 5 m: 0.55 m
   p.window = 1;

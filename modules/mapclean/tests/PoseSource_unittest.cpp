@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/mapclean/PoseSource.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <gtest/gtest.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -112,14 +112,14 @@ TEST(PoseSource, ViewpointNeedsPcdInput) {
 
 TEST(PoseSource, SimplemapKeyframesAndOdometryBridging) {
   // Two keyframes (t = 1 s at x = 10, t = 2 s at x = 20) with one observation each.
-  ::mrpt::maps::CSimpleMap sm;
+  mrpt::maps::CSimpleMap sm;
   for (int k = 1; k <= 2; k++) {
-    auto obs = std::make_shared<::mrpt::obs::CObservation3DRangeScan>();
-    obs->timestamp = dynobj::mrpt::fromUnixNs(k * 1000000000LL);
-    auto sf = std::make_shared<::mrpt::obs::CSensoryFrame>();
+    auto obs = std::make_shared<mrpt::obs::CObservation3DRangeScan>();
+    obs->timestamp = dynobj::mrptio::fromUnixNs(k * 1000000000LL);
+    auto sf = std::make_shared<mrpt::obs::CSensoryFrame>();
     sf->insert(obs);
-    sm.insert(std::make_shared<::mrpt::poses::CPose3DPDFGaussian>(
-                  ::mrpt::poses::CPose3D(10.0 * k, 0, 0, 0, 0, 0)),
+    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
+                  mrpt::poses::CPose3D(10.0 * k, 0, 0, 0, 0, 0)),
               sf);
   }
   const std::string f = tmp("kf.simplemap");

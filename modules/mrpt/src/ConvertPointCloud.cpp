@@ -8,9 +8,9 @@
 
 #include "detail.h"
 
-namespace dynobj::mrpt::detail {
+namespace dynobj::mrptio::detail {
 
-core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointCloud& o,
+core::ProjectionStats convertPointCloud(const mrpt::obs::CObservationPointCloud& o,
                                         const OptSensor& sensor,
                                         std::map<std::string, core::SensorModel>& learned,
                                         core::LidarFrame& frame) {
@@ -20,7 +20,7 @@ core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointClou
   const auto& ys = pc.getPointsBufferRef_y();
   const auto& zs = pc.getPointsBufferRef_z();
   core::PointCloud cloud;
-  const auto* xyzi = dynamic_cast<const ::mrpt::maps::CPointsMapXYZI*>(&pc);
+  const auto* xyzi = dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(&pc);
   cloud.reserve(xs.size(), xyzi != nullptr, false);
   cloud.x.assign(xs.begin(), xs.end());
   cloud.y.assign(ys.begin(), ys.end());
@@ -43,4 +43,4 @@ core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointClou
   }
 }
 
-}  // namespace dynobj::mrpt::detail
+}  // namespace dynobj::mrptio::detail

@@ -2,20 +2,19 @@
 // CObservation3DRangeScan in the organized LiDAR layout of docs/formats.md.
 #include <dynobj/core/RowRecovery.h>
 #include <dynobj/core/SphericalProjection.h>
-
-#include <algorithm>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "detail.h"
-#include "dynobj/mrpt/RangeScanLayout.h"
+#include "dynobj/mrptio/RangeScanLayout.h"
 
-namespace dynobj::mrpt::detail {
+namespace dynobj::mrptio::detail {
 namespace {
 
-using ::mrpt::obs::CObservation3DRangeScan;
+using mrpt::obs::CObservation3DRangeScan;
 
 /// Rows and columns of the scan's images.
 void imageSize(const CObservation3DRangeScan& o, int& h, int& w) {
@@ -186,4 +185,4 @@ core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const
   return organizeOrFail(o, *sensor, cloud, frame);
 }
 
-}  // namespace dynobj::mrpt::detail
+}  // namespace dynobj::mrptio::detail

@@ -9,10 +9,10 @@
 
 #include "detail.h"
 
-namespace dynobj::mrpt::detail {
+namespace dynobj::mrptio::detail {
 namespace {
 
-using ::mrpt::obs::CObservationRotatingScan;
+using mrpt::obs::CObservationRotatingScan;
 
 /// MRPT 2.5's fromVelodyne() writes one column per firing slot (columnCount = slots, only
 /// columnCount / rowCount firings used) and a clockwise azimuth with a positive span, unlike the
@@ -76,4 +76,4 @@ core::ProjectionStats convertRotatingScan(const CObservationRotatingScan& o,
   return organizeOrFail(o, *sensor, cloud, frame);
 }
 
-}  // namespace dynobj::mrpt::detail
+}  // namespace dynobj::mrptio::detail

@@ -11,10 +11,10 @@
 
 #include "detail.h"
 
-namespace dynobj::mrpt::detail {
+namespace dynobj::mrptio::detail {
 namespace {
 
-using ::mrpt::obs::CObservationVelodyneScan;
+using mrpt::obs::CObservationVelodyneScan;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnon-virtual-dtor"  // MRPT's wrapper base has no virtual dtor
@@ -28,7 +28,7 @@ struct CloudSink : public CObservationVelodyneScan::PointCloudStorageWrapper {
     laser.reserve(n);
   }
   void add_point(float x, float y, float z, std::uint8_t intensity,
-                 const ::mrpt::system::TTimeStamp& /*tim*/, float /*azimuth*/,
+                 const mrpt::system::TTimeStamp& /*tim*/, float /*azimuth*/,
                  std::uint16_t laser_id) override {
     cloud.push_back(x, y, z, intensity);
     laser.push_back(laser_id);
@@ -99,4 +99,4 @@ core::ProjectionStats convertVelodyne(const CObservationVelodyneScan& o, const O
   return organizeOrFail(o, model, cloud, frame);
 }
 
-}  // namespace dynobj::mrpt::detail
+}  // namespace dynobj::mrptio::detail

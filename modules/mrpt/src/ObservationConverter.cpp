@@ -1,18 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mrpt/ObservationConverter.h"
+#include "dynobj/mrptio/ObservationConverter.h"
 
 #include <dynobj/core/Config.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/obs/CObservationPointCloud.h>
-#include <mrpt/obs/CObservationRotatingScan.h>
-#include <mrpt/obs/CObservationVelodyneScan.h>
 
-#include "detail.h"
-#include "dynobj/mrpt/TimeConversion.h"
+#include "ObservationClasses.h"
+#include "dynobj/mrptio/TimeConversion.h"
 
-namespace dynobj::mrpt {
+namespace dynobj::mrptio {
 
-namespace mobs = ::mrpt::obs;
+namespace mobs = mrpt::obs;
 
 namespace detail {
 
@@ -40,40 +36,27 @@ ObservationConverter::ObservationConverter(std::optional<core::SensorModel> sens
 }
 
 bool ObservationConverter::isLidarObservation(const mobs::CObservation& obs) {
-  return dynobj_rtti::isClass<mobs::CObservation3DRangeScan>(obs) ||
-         dynobj_rtti::isClass<mobs::CObservationVelodyneScan>(obs) ||
-         dynobj_rtti::isClass<mobs::CObservationPointCloud>(obs) ||
-         dynobj_rtti::isClass<mobs::CObservationRotatingScan>(obs);
+  return detail::findObservationClass(obs) != nullptr;
 }
 
 core::ProjectionStats ObservationConverter::convert(const mobs::CObservation& obs,
                                                     core::LidarFrame& frame) const {
+  const detail::ObservationClass* cls = detail::findObservationClass(obs);
+  if (!cls) {
+    std::string names;
+    for (const auto& c : detail::observationClasses())
+      names += std::string(names.empty() ? "" : ", ") + c.name;
+    detail::fail(obs, "is not a LiDAR observation this converter supports (" + names + ")");
+  }
   try {
     obs.load();  // externally stored points / images
   } catch (const std::exception& e) {
     detail::fail(obs, std::string("cannot load its externally stored data: ") + e.what());
   }
-  core::ProjectionStats st;
-  if (dynobj_rtti::isClass<mobs::CObservation3DRangeScan>(obs))
-    st = detail::convertRangeScan3D(dynamic_cast<const mobs::CObservation3DRangeScan&>(obs),
-                                    sensor_, frame);
-  else if (dynobj_rtti::isClass<mobs::CObservationVelodyneScan>(obs))
-    st = detail::convertVelodyne(dynamic_cast<const mobs::CObservationVelodyneScan&>(obs), sensor_,
-                                 frame);
-  else if (dynobj_rtti::isClass<mobs::CObservationPointCloud>(obs))
-    st = detail::convertPointCloud(dynamic_cast<const mobs::CObservationPointCloud&>(obs), sensor_,
-                                   learned_, frame);
-  else if (dynobj_rtti::isClass<mobs::CObservationRotatingScan>(obs))
-    st = detail::convertRotatingScan(dynamic_cast<const mobs::CObservationRotatingScan&>(obs),
-                                     sensor_, frame);
-  else
-    detail::fail(obs,
-                 "is not a LiDAR observation this converter supports "
-                 "(CObservation3DRangeScan, CObservationVelodyneScan, "
-                 "CObservationPointCloud, CObservationRotatingScan)");
+  const core::ProjectionStats st = cls->convert(obs, {sensor_, learned_}, frame);
   frame.timestamp_ns = toUnixNs(obs.timestamp);
   if (st.input_points == 0) detail::fail(obs, "is empty (no points)");
   return st;
 }
 
-}  // namespace dynobj::mrpt
+}  // namespace dynobj::mrptio

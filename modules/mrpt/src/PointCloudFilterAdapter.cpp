@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mrpt/PointCloudFilterAdapter.h"
+#include "dynobj/mrptio/PointCloudFilterAdapter.h"
 
 #include <dynobj/core/SphericalProjection.h>
 #include <mrpt/maps/CPointsMap.h>
 
-#include "dynobj/mrpt/TimeConversion.h"
+#include "dynobj/mrptio/PoseConversion.h"
+#include "dynobj/mrptio/TimeConversion.h"
 
-namespace dynobj::mrpt {
+namespace dynobj::mrptio {
 
 PointCloudFilterAdapter::PointCloudFilterAdapter(const core::SensorModel& sensor,
                                                  const core::DetectorParams& params)
@@ -14,10 +15,9 @@ PointCloudFilterAdapter::PointCloudFilterAdapter(const core::SensorModel& sensor
   sensor_.validate();
 }
 
-void PointCloudFilterAdapter::filter(::mrpt::maps::CPointsMap* cloud,
-                                     const ::mrpt::system::TTimeStamp stamp,
-                                     const ::mrpt::poses::CPose3D& pose,
-                                     TExtraFilterParams* params) {
+void PointCloudFilterAdapter::filter(mrpt::maps::CPointsMap* cloud,
+                                     const mrpt::system::TTimeStamp stamp,
+                                     const mrpt::poses::CPose3D& pose, TExtraFilterParams* params) {
   if (!cloud) throw std::invalid_argument("PointCloudFilterAdapter::filter: null point cloud");
   core::PointCloud pc;
   const auto& xs = cloud->getPointsBufferRef_x();
@@ -31,11 +31,8 @@ void PointCloudFilterAdapter::filter(::mrpt::maps::CPointsMap* cloud,
   frame.timestamp_ns = toUnixNs(stamp);
   std::optional<Eigen::Isometry3d> motion;  // T_{prev<-cur} from the given poses
   if (prev_pose_) {
-    Eigen::Isometry3d T;
     // `a - b` in MRPT is a expressed in b's frame: the current pose seen from the previous one.
-    T.matrix() =
-        (pose - *prev_pose_).getHomogeneousMatrixVal<::mrpt::math::CMatrixDouble44>().asEigen();
-    motion = T;
+    motion = toIsometry(pose - *prev_pose_);
   }
   prev_pose_ = pose;
   last_ = &detector_.process(frame, motion);
@@ -45,4 +42,4 @@ void PointCloudFilterAdapter::filter(::mrpt::maps::CPointsMap* cloud,
   if (!params || !params->do_not_delete) cloud->applyDeletionMask(del);
 }
 
-}  // namespace dynobj::mrpt
+}  // namespace dynobj::mrptio

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mrpt/RangeScanLayout.h"
+#include "dynobj/mrptio/RangeScanLayout.h"
 
 #include <dynobj/core/FrameImages.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace dynobj::mrpt {
+namespace dynobj::mrptio {
 namespace {
 
 /// Smallest of 1, 2, 4, 10 mm per unit that stores `max_range` in 16 bits.
@@ -18,7 +18,7 @@ float rangeUnitsFor(double max_range) {
 
 }  // namespace
 
-void frameToRangeScan(const core::LidarFrame& frame, ::mrpt::obs::CObservation3DRangeScan& out) {
+void frameToRangeScan(const core::LidarFrame& frame, mrpt::obs::CObservation3DRangeScan& out) {
   const int h = frame.rows(), w = frame.cols();
   double max_seen = 0;
   cv::minMaxLoc(frame.range, nullptr, &max_seen);
@@ -58,8 +58,8 @@ void frameToRangeScan(const core::LidarFrame& frame, ::mrpt::obs::CObservation3D
   out.hasIntensityImage = frame.has_intensity;
   if (frame.has_intensity) {
     const cv::Mat_<std::uint8_t> img8 = core::stretchToU8(frame.intensity, frame.valid);
-    out.intensityImage = ::mrpt::img::CImage(img8, ::mrpt::img::DEEP_COPY);
-    out.intensityImageChannel = ::mrpt::obs::CObservation3DRangeScan::CH_IR;
+    out.intensityImage = mrpt::img::CImage(img8, mrpt::img::DEEP_COPY);
+    out.intensityImageChannel = mrpt::obs::CObservation3DRangeScan::CH_IR;
     auto& layer = out.rangeImageOtherLayers[kIntensityLayer];
     layer.setSize(h, w);
     for (int r = 0; r < h; r++)
@@ -69,7 +69,7 @@ void frameToRangeScan(const core::LidarFrame& frame, ::mrpt::obs::CObservation3D
   }
 }
 
-cv::Mat_<std::uint16_t> rangeLayer(const ::mrpt::obs::CObservation3DRangeScan& obs,
+cv::Mat_<std::uint16_t> rangeLayer(const mrpt::obs::CObservation3DRangeScan& obs,
                                    const std::string& name) {
   const auto it = obs.rangeImageOtherLayers.find(name);
   if (it == obs.rangeImageOtherLayers.end()) return {};
@@ -86,4 +86,4 @@ cv::Mat_<std::uint16_t> rangeLayer(const ::mrpt::obs::CObservation3DRangeScan& o
   return out;
 }
 
-}  // namespace dynobj::mrpt
+}  // namespace dynobj::mrptio

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mrpt/RawlogReader.h"
+#include "dynobj/mrptio/RawlogReader.h"
 
 #include <mrpt/system/filesystem.h>
 
 #include <algorithm>
 
-namespace dynobj::mrpt {
+namespace dynobj::mrptio {
 
-namespace mobs = ::mrpt::obs;
+namespace mobs = mrpt::obs;
 
 namespace {
 
@@ -35,19 +35,19 @@ std::vector<mobs::CObservation::Ptr> RawlogEntry::observations() const {
 }
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
-  if (!::mrpt::system::fileExists(path)) throw RawlogError("rawlog '" + path + "' does not exist");
-  if (::mrpt::system::getFileSize(path) == 0) throw RawlogError("rawlog '" + path + "' is empty");
+  if (!mrpt::system::fileExists(path)) throw RawlogError("rawlog '" + path + "' does not exist");
+  if (mrpt::system::getFileSize(path) == 0) throw RawlogError("rawlog '" + path + "' is empty");
   std::string err;
   if (!in_.open(path, err))
     throw RawlogError("cannot open rawlog '" + path + "'" + (err.empty() ? "" : ": " + err));
-  archive_ = ::mrpt::serialization::archiveUniquePtrFrom(in_);
+  archive_ = mrpt::serialization::archiveUniquePtrFrom(in_);
 }
 
-::mrpt::serialization::CSerializable::Ptr RawlogReader::readObject(const char* what) {
+mrpt::serialization::CSerializable::Ptr RawlogReader::readObject(const char* what) {
   const std::uint64_t before = in_.getPosition();
   try {
     return archive_->ReadObject();
-  } catch (const ::mrpt::serialization::CExceptionEOF&) {
+  } catch (const mrpt::serialization::CExceptionEOF&) {
     if (in_.getPosition() == before) return nullptr;  // nothing of a new object was read
     throw RawlogError("rawlog '" + path_ + "' is truncated: entry " + std::to_string(entries_) +
                       " (" + what + ") ends early at byte " + std::to_string(in_.getPosition()));
@@ -89,4 +89,4 @@ bool RawlogReader::next(RawlogEntry& entry) {
   return true;
 }
 
-}  // namespace dynobj::mrpt
+}  // namespace dynobj::mrptio

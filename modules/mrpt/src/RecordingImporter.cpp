@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/mrpt/RecordingImporter.h"
+#include "dynobj/mrptio/RecordingImporter.h"
 
-#include <dynobj/core/AtomicFile.h>
 #include <dynobj/core/RowRecovery.h>
 #include <dynobj/io/CloudFolder.h>
 #include <dynobj/io/FormatError.h>
@@ -20,43 +19,14 @@
 #include <memory>
 #include <stdexcept>
 
-#include "dynobj/mrpt/RangeScanLayout.h"
-#include "dynobj/mrpt/TimeConversion.h"
+#include "dynobj/mrptio/RangeScanLayout.h"
+#include "dynobj/mrptio/RawlogWriter.h"
+#include "dynobj/mrptio/TimeConversion.h"
 
-namespace dynobj::mrpt {
+namespace dynobj::mrptio {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The output rawlog: written to "<path>.partial", renamed by commit(), removed otherwise.
-class RawlogOutput {
- public:
-  explicit RawlogOutput(std::string path) : path_(std::move(path)) {
-    if (!file_.open(core::partialName(path_), 1))
-      throw std::runtime_error("cannot write '" + core::partialName(path_) + "'");
-  }
-  ~RawlogOutput() {
-    if (committed_) return;
-    file_.close();
-    std::remove(core::partialName(path_).c_str());
-  }
-  RawlogOutput(const RawlogOutput&) = delete;
-  RawlogOutput& operator=(const RawlogOutput&) = delete;
-  void write(const ::mrpt::serialization::CSerializable& obj) {
-    auto ar = ::mrpt::serialization::archiveFrom(file_);
-    ar << obj;
-  }
-  void commit() {
-    file_.close();
-    core::commitPartial(path_);
-    committed_ = true;
-  }
-
- private:
-  std::string path_;
-  ::mrpt::io::CFileGZOutputStream file_;
-  bool committed_ = false;
-};
 
 /// Fractional intensities (KITTI remission, 0-1) are stored x 255 (the 8-bit scale of the
 /// sensor they come from); integer-valued ones (Velodyne 0-255, Ouster 8/16-bit) as they are.
@@ -88,15 +58,15 @@ class SweepWriter {
         throw std::runtime_error("'" + o_.poses + "' has no pose for sweep " +
                                  std::to_string(s.sweeps));
       const Eigen::Isometry3d& p = poses_[s.sweeps].pose;
-      ::mrpt::obs::CObservationOdometry odo;
+      mrpt::obs::CObservationOdometry odo;
       odo.sensorLabel = "ODOMETRY";
       odo.timestamp = stamp;
-      odo.odometry = ::mrpt::poses::CPose2D(p.translation().x(), p.translation().y(),
-                                            std::atan2(p.linear()(1, 0), p.linear()(0, 0)));
+      odo.odometry = mrpt::poses::CPose2D(p.translation().x(), p.translation().y(),
+                                          std::atan2(p.linear()(1, 0), p.linear()(0, 0)));
       out_.write(odo);
       s.odometry++;
     }
-    ::mrpt::obs::CObservation3DRangeScan scan;
+    mrpt::obs::CObservation3DRangeScan scan;
     frameToRangeScan(frame, scan);
     scan.sensorLabel = o_.sensor_label;
     scan.timestamp = stamp;
@@ -114,7 +84,7 @@ class SweepWriter {
 
  private:
   const ImportOptions& o_;
-  RawlogOutput out_;
+  RawlogWriter out_;
   std::vector<io::TimedPose> poses_;
 };
 
@@ -210,4 +180,4 @@ ImportSummary importRecording(const ImportOptions& o, const std::string& output,
                            "' is neither a folder of .pcd/.bin sweeps nor a .pcap capture");
 }
 
-}  // namespace dynobj::mrpt
+}  // namespace dynobj::mrptio

@@ -11,15 +11,6 @@
 #include <optional>
 #include <string>
 
-/// MRPT's RTTI macros name `mrpt::rtti` unqualified, which inside dynobj::mrpt would resolve to
-/// this project's namespace: the exact-class test lives at global scope.
-namespace dynobj_rtti {
-template <class T>
-bool isClass(const ::mrpt::obs::CObservation& o) {
-  return IS_CLASS(o, T);
-}
-}  // namespace dynobj_rtti
-
 namespace mrpt::obs {
 class CObservation3DRangeScan;
 class CObservationVelodyneScan;
@@ -27,29 +18,29 @@ class CObservationPointCloud;
 class CObservationRotatingScan;
 }  // namespace mrpt::obs
 
-namespace dynobj::mrpt::detail {
+namespace dynobj::mrptio::detail {
 
 using OptSensor = std::optional<core::SensorModel>;
 
 /// Throws ConversionError("<class> '<label>': <what>").
-[[noreturn]] void fail(const ::mrpt::obs::CObservation& obs, const std::string& what);
+[[noreturn]] void fail(const mrpt::obs::CObservation& obs, const std::string& what);
 
 /// Runs a projection, turning std::invalid_argument / ParameterError into ConversionError.
-core::ProjectionStats organizeOrFail(const ::mrpt::obs::CObservation& obs,
+core::ProjectionStats organizeOrFail(const mrpt::obs::CObservation& obs,
                                      const core::SensorModel& model, const core::PointCloud& cloud,
                                      core::LidarFrame& frame);
 
-core::ProjectionStats convertRangeScan3D(const ::mrpt::obs::CObservation3DRangeScan& o,
+core::ProjectionStats convertRangeScan3D(const mrpt::obs::CObservation3DRangeScan& o,
                                          const OptSensor& sensor, core::LidarFrame& frame);
-core::ProjectionStats convertVelodyne(const ::mrpt::obs::CObservationVelodyneScan& o,
+core::ProjectionStats convertVelodyne(const mrpt::obs::CObservationVelodyneScan& o,
                                       const OptSensor& sensor, core::LidarFrame& frame);
 /// `learned`: per sensor label, the rows recovered from its first complete cloud (used as the
 /// hint when `sensor` is not given; filled here).
-core::ProjectionStats convertPointCloud(const ::mrpt::obs::CObservationPointCloud& o,
+core::ProjectionStats convertPointCloud(const mrpt::obs::CObservationPointCloud& o,
                                         const OptSensor& sensor,
                                         std::map<std::string, core::SensorModel>& learned,
                                         core::LidarFrame& frame);
-core::ProjectionStats convertRotatingScan(const ::mrpt::obs::CObservationRotatingScan& o,
+core::ProjectionStats convertRotatingScan(const mrpt::obs::CObservationRotatingScan& o,
                                           const OptSensor& sensor, core::LidarFrame& frame);
 
-}  // namespace dynobj::mrpt::detail
+}  // namespace dynobj::mrptio::detail

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Converters on tiny hand-built observations, including every malformed case.
-#include <dynobj/mrpt/ObservationConverter.h>
+#include <dynobj/mrptio/ObservationConverter.h>
 #include <gtest/gtest.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/maps/CSimplePointsMap.h>
@@ -15,9 +15,9 @@
 
 using dynobj::core::LidarFrame;
 using dynobj::core::SensorModel;
-using dynobj::mrpt::ConversionError;
-using dynobj::mrpt::ObservationConverter;
-namespace mobs = ::mrpt::obs;
+using dynobj::mrptio::ConversionError;
+using dynobj::mrptio::ObservationConverter;
+namespace mobs = mrpt::obs;
 
 namespace {
 
@@ -71,7 +71,7 @@ TEST(ObservationConverter, RangeScan3DOrganizedPath) {
   o.hasIntensityImage = true;
   cv::Mat_<std::uint8_t> img(4, 8, std::uint8_t{0});
   img(1, 2) = 77;
-  o.intensityImage = ::mrpt::img::CImage(img, ::mrpt::img::DEEP_COPY);
+  o.intensityImage = mrpt::img::CImage(img, mrpt::img::DEEP_COPY);
   LidarFrame f;
   const auto st = ObservationConverter().convert(o, f);
   EXPECT_EQ(st.pixels_set, 2u);
@@ -106,7 +106,7 @@ TEST(ObservationConverter, RangeScan3DMalformed) {
     auto o = tinyRangeScan();
     o.hasIntensityImage = true;
     o.intensityImage =
-        ::mrpt::img::CImage(cv::Mat_<std::uint8_t>(3, 8, std::uint8_t{1}), ::mrpt::img::DEEP_COPY);
+        mrpt::img::CImage(cv::Mat_<std::uint8_t>(3, 8, std::uint8_t{1}), mrpt::img::DEEP_COPY);
     expectError(conv, o, "intensityImage is 3x8");
   }
   {
@@ -157,7 +157,7 @@ TEST(ObservationConverter, RangeScan3DWithoutPointsUsesTheSensorModel) {
 }
 
 TEST(ObservationConverter, PointCloudNeedsSensorAndKeepsIntensity) {
-  auto pc = std::make_shared<::mrpt::maps::CPointsMapXYZI>();
+  auto pc = std::make_shared<mrpt::maps::CPointsMapXYZI>();
   pc->insertPointFast(1, 0, 0);
   pc->insertPointFast(0, 5, 0);
   pc->insertPointFast(std::numeric_limits<float>::quiet_NaN(), 0, 0);
@@ -176,7 +176,7 @@ TEST(ObservationConverter, PointCloudNeedsSensorAndKeepsIntensity) {
   EXPECT_FLOAT_EQ(f.intensity(2, 6), 0.75f);  // (0,5,0): azimuth 90 deg -> column 6
 
   mobs::CObservationPointCloud plain;
-  plain.pointcloud = std::make_shared<::mrpt::maps::CSimplePointsMap>();
+  plain.pointcloud = std::make_shared<mrpt::maps::CSimplePointsMap>();
   plain.pointcloud->insertPoint(3, 0, 0);
   ObservationConverter(tinySensor()).convert(plain, f);
   EXPECT_FALSE(f.has_intensity);  // documented fallback: features use the range image
@@ -184,7 +184,7 @@ TEST(ObservationConverter, PointCloudNeedsSensorAndKeepsIntensity) {
   mobs::CObservationPointCloud null_pc;
   expectError(ObservationConverter(tinySensor()), null_pc, "null");
   mobs::CObservationPointCloud empty_pc;
-  empty_pc.pointcloud = std::make_shared<::mrpt::maps::CSimplePointsMap>();
+  empty_pc.pointcloud = std::make_shared<mrpt::maps::CSimplePointsMap>();
   expectError(ObservationConverter(tinySensor()), empty_pc, "empty");
 }
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // frame -> CObservation3DRangeScan (organized layout) -> serialized -> read -> frame.
 #include <dynobj/core/SphericalProjection.h>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RangeScanLayout.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RangeScanLayout.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
@@ -13,7 +13,7 @@
 #include "SerializationRoundTrip.h"
 
 using namespace dynobj;
-namespace mobs = ::mrpt::obs;
+namespace mobs = mrpt::obs;
 
 namespace {
 
@@ -43,19 +43,19 @@ core::LidarFrame randomFrame(unsigned seed, int rows, int cols) {
 TEST(RangeScanLayout, RoundTripThroughSerializationKeepsEveryReturn) {
   const core::LidarFrame a = randomFrame(7, 16, 64);
   mobs::CObservation3DRangeScan obs;
-  dynobj::mrpt::frameToRangeScan(a, obs);
+  dynobj::mrptio::frameToRangeScan(a, obs);
   EXPECT_FLOAT_EQ(obs.rangeUnits, 0.002f);
   EXPECT_FALSE(obs.range_is_depth);
   EXPECT_EQ(obs.points3D_x.size(), a.validCount());
   auto back = dynobj::test::serializeRoundTrip(obs);
   ASSERT_TRUE(back);
   // MRPT 2.5.8 reads other layers with rows/cols swapped: rangeLayer() must undo it.
-  const auto layer = dynobj::mrpt::intensityLayer(*back);
+  const auto layer = dynobj::mrptio::intensityLayer(*back);
   ASSERT_EQ(layer.rows, 16);
   ASSERT_EQ(layer.cols, 64);
 
   core::LidarFrame b;
-  dynobj::mrpt::ObservationConverter().convert(*back, b);
+  dynobj::mrptio::ObservationConverter().convert(*back, b);
   ASSERT_EQ(b.rows(), 16);
   ASSERT_EQ(b.cols(), 64);
   EXPECT_EQ(b.validCount(), a.validCount());
@@ -72,8 +72,8 @@ TEST(RangeScanLayout, RoundTripThroughSerializationKeepsEveryReturn) {
 TEST(RangeScanLayout, StockPointMapInsertsExactlyTheValidPixels) {
   const core::LidarFrame a = randomFrame(3, 8, 32);
   mobs::CObservation3DRangeScan obs;
-  dynobj::mrpt::frameToRangeScan(a, obs);
-  ::mrpt::maps::CSimplePointsMap map;
+  dynobj::mrptio::frameToRangeScan(a, obs);
+  mrpt::maps::CSimplePointsMap map;
   map.insertionOptions.minDistBetweenLaserPoints = 0;
   ASSERT_TRUE(map.insertObservation(obs));
   EXPECT_EQ(map.size(), a.validCount());
@@ -83,7 +83,7 @@ TEST(RangeScanLayout, FrameWithoutIntensityWritesNoIntensity) {
   core::LidarFrame a = randomFrame(5, 4, 16);
   a.has_intensity = false;
   mobs::CObservation3DRangeScan obs;
-  dynobj::mrpt::frameToRangeScan(a, obs);
+  dynobj::mrptio::frameToRangeScan(a, obs);
   EXPECT_FALSE(obs.hasIntensityImage);
-  EXPECT_TRUE(dynobj::mrpt::intensityLayer(obs).empty());
+  EXPECT_TRUE(dynobj::mrptio::intensityLayer(obs).empty());
 }

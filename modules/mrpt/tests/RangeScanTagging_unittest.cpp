@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/core/SphericalProjection.h>
-#include <dynobj/mrpt/DynamicObjectFilter.h>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RangeScanLayout.h>
-#include <dynobj/mrpt/RangeScanTagging.h>
+#include <dynobj/mrptio/DynamicObjectFilter.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/ObservationTagging.h>
+#include <dynobj/mrptio/RangeScanLayout.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/io/lazy_load_path.h>
@@ -14,11 +14,12 @@
 
 #include <cmath>
 
+#include "MapInsertion.h"
 #include "SerializationRoundTrip.h"
 
 using namespace dynobj;
-namespace dm = dynobj::mrpt;
-namespace mobs = ::mrpt::obs;
+namespace dm = dynobj::mrptio;
+namespace mobs = mrpt::obs;
 
 namespace {
 
@@ -57,13 +58,6 @@ cv::Mat_<std::uint8_t> someMask() {
   return m;
 }
 
-std::size_t inserted(const mobs::CObservation3DRangeScan& o) {
-  ::mrpt::maps::CSimplePointsMap map;
-  map.insertionOptions.minDistBetweenLaserPoints = 0;
-  map.insertObservation(o);
-  return map.size();
-}
-
 }  // namespace
 
 TEST(RangeScanTagging, MarkSetsTheDynamicBitAndKeepsOtherLabels) {
@@ -99,7 +93,7 @@ TEST(RangeScanTagging, DropRemovesExactlyTheFlaggedPointsAndRestoreGivesThemBack
   EXPECT_EQ(st.points_removed, 13u);
   EXPECT_EQ(o.points3D_x.size(), 512u - 13u);
   EXPECT_EQ(o.points3D_idxs_y.size(), o.points3D_x.size());
-  EXPECT_EQ(inserted(o), 512u - 13u);  // what a stock point map inserts
+  EXPECT_EQ(dynobj::test::insertedPoints(o), 512u - 13u);  // what a stock point map inserts
   EXPECT_EQ(o.rangeImage(3, 11), 0);
   EXPECT_EQ(dm::rangeLayer(o, dm::kDynamicLayer)(3, 11), original.rangeImage(3, 11));
   for (std::size_t i = 0; i < o.points3D_x.size(); i++)
@@ -144,19 +138,19 @@ TEST(RangeScanTagging, BadInputsAreErrors) {
 
 TEST(DynamicObjectFilter, ExternallyStoredScansPassThroughWithAWarning) {
   auto scan = std::make_shared<mobs::CObservation3DRangeScan>(fullScan());
-  const std::string dir = ::mrpt::system::getTempFileName() + "_ext";
-  ::mrpt::system::createDirectory(dir);
-  ::mrpt::io::setLazyLoadPathBase(dir + "/");
+  const std::string dir = mrpt::system::getTempFileName() + "_ext";
+  mrpt::system::createDirectory(dir);
+  mrpt::io::setLazyLoadPathBase(dir + "/");
   scan->points3D_convertToExternalStorage("pts.bin", dir + "/");
   ASSERT_TRUE(scan->points3D_isExternallyStored());
   dm::DynamicObjectFilter filter({dm::FilterMode::Drop, "", std::nullopt, {}});
-  ::mrpt::obs::CObservation::Ptr obs = scan;
+  mrpt::obs::CObservation::Ptr obs = scan;
   EXPECT_EQ(filter.filter(obs), nullptr);
   EXPECT_TRUE(scan->points3D_isExternallyStored());  // untouched: its external file is not ours
   EXPECT_EQ(filter.summary().passed_through, 1u);
   ASSERT_EQ(filter.summary().warnings.size(), 1u);
   EXPECT_NE(filter.summary().warnings.begin()->first.find("de-externalize"), std::string::npos);
-  ::mrpt::io::setLazyLoadPathBase(".");
+  mrpt::io::setLazyLoadPathBase(".");
 }
 
 TEST(DynamicObjectFilter, NonLidarAndOtherLabelsPassThroughUntouched) {
@@ -164,7 +158,7 @@ TEST(DynamicObjectFilter, NonLidarAndOtherLabelsPassThroughUntouched) {
   auto other = std::make_shared<mobs::CObservation3DRangeScan>(fullScan());
   other->sensorLabel = "OTHER";
   const auto before = other->points3D_x;
-  ::mrpt::obs::CObservation::Ptr obs = other;
+  mrpt::obs::CObservation::Ptr obs = other;
   EXPECT_EQ(filter.filter(obs), nullptr);
   EXPECT_EQ(other->points3D_x, before);
   EXPECT_EQ(filter.summary().observations, 1u);

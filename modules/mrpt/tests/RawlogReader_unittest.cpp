@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
@@ -10,32 +10,32 @@
 #include <fstream>
 #include <iterator>
 
-using dynobj::mrpt::RawlogEntry;
-using dynobj::mrpt::RawlogError;
-using dynobj::mrpt::RawlogReader;
+using dynobj::mrptio::RawlogEntry;
+using dynobj::mrptio::RawlogError;
+using dynobj::mrptio::RawlogReader;
 
 namespace {
 
 std::string tempPath(const std::string& name) {
-  return ::mrpt::system::getTempFileName() + "_" + name;
+  return mrpt::system::getTempFileName() + "_" + name;
 }
 
 /// Writes `n` comment observations (plain, uncompressed, so byte offsets are predictable).
 std::string writeComments(int n, bool gz) {
   const std::string path = tempPath(gz ? "c.rawlog.gz" : "c.rawlog");
-  auto write = [&](::mrpt::io::CStream& s) {
-    auto arch = ::mrpt::serialization::archiveFrom(s);
+  auto write = [&](mrpt::io::CStream& s) {
+    auto arch = mrpt::serialization::archiveFrom(s);
     for (int i = 0; i < n; i++) {
-      ::mrpt::obs::CObservationComment c;
+      mrpt::obs::CObservationComment c;
       c.text = "comment number " + std::to_string(i) + std::string(100, 'x');
       arch << c;
     }
   };
   if (gz) {
-    ::mrpt::io::CFileGZOutputStream f(path);
+    mrpt::io::CFileGZOutputStream f(path);
     write(f);
   } else {
-    ::mrpt::io::CFileOutputStream f(path);
+    mrpt::io::CFileOutputStream f(path);
     write(f);
   }
   return path;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Converters on the real scans that MRPT ships in /usr/share/mrpt/datasets (package mrpt-common).
 #include <dynobj/core/SensorModel.h>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/io/SensorFile.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
@@ -13,15 +14,15 @@
 
 using dynobj::core::LidarFrame;
 using dynobj::core::SensorModel;
-using dynobj::mrpt::ObservationConverter;
-using dynobj::mrpt::RawlogEntry;
-using dynobj::mrpt::RawlogReader;
+using dynobj::mrptio::ObservationConverter;
+using dynobj::mrptio::RawlogEntry;
+using dynobj::mrptio::RawlogReader;
 
 namespace {
 
 const std::string kDatasets = "/usr/share/mrpt/datasets/";
 
-::mrpt::obs::CObservation::Ptr firstObservation(const std::string& file) {
+mrpt::obs::CObservation::Ptr firstObservation(const std::string& file) {
   RawlogReader reader(kDatasets + file);
   RawlogEntry e;
   EXPECT_TRUE(reader.next(e));
@@ -32,7 +33,7 @@ const std::string kDatasets = "/usr/share/mrpt/datasets/";
 }
 
 SensorModel preset(const std::string& name) {
-  return SensorModel::fromFile(std::string(DYNOBJ_SHARE_DIR) + "/sensors/" + name);
+  return dynobj::io::readSensorModel(std::string(DYNOBJ_SHARE_DIR) + "/sensors/" + name);
 }
 
 double medianElevationDeg(const LidarFrame& f, int row) {
@@ -50,7 +51,7 @@ double medianElevationDeg(const LidarFrame& f, int row) {
 }  // namespace
 
 TEST(RealScans, Vlp16VelodyneScanGives16RingsAndEveryMrptPoint) {
-  auto obs = std::dynamic_pointer_cast<::mrpt::obs::CObservationVelodyneScan>(
+  auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(
       firstObservation("test_velodyne_VLP16.rawlog"));
   ASSERT_TRUE(obs);
   ASSERT_EQ(obs->point_cloud.size(), 0u);  // as shipped: packets only
@@ -100,11 +101,11 @@ TEST(RealScans, Vlp16VelodyneScanGives16RingsAndEveryMrptPoint) {
 }
 
 TEST(RealScans, Vlp16RotatingScanMatchesTheVelodyneConversion) {
-  auto rot = std::dynamic_pointer_cast<::mrpt::obs::CObservationRotatingScan>(
+  auto rot = std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(
       firstObservation("rot_scan_velodyne.rawlog"));
   ASSERT_TRUE(rot);
   LidarFrame fr;
-  EXPECT_THROW(ObservationConverter().convert(*rot, fr), dynobj::mrpt::ConversionError);
+  EXPECT_THROW(ObservationConverter().convert(*rot, fr), dynobj::mrptio::ConversionError);
   const auto st = ObservationConverter(preset("vlp-16.ini")).convert(*rot, fr);
   EXPECT_EQ(st.input_points, 11305u);
   EXPECT_EQ(fr.rows(), 16);
@@ -133,7 +134,7 @@ TEST(RealScans, Vlp16RotatingScanMatchesTheVelodyneConversion) {
 }
 
 TEST(RealScans, RgbdRangeScanOrganizedPathKeepsAllPoints) {
-  auto obs = std::dynamic_pointer_cast<::mrpt::obs::CObservation3DRangeScan>(
+  auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(
       firstObservation("tests_rgbd.rawlog"));
   ASSERT_TRUE(obs);
   obs->load();

@@ -9,11 +9,11 @@ namespace dynobj::test {
 
 template <class T>
 typename T::Ptr serializeRoundTrip(const T& o) {
-  ::mrpt::io::CMemoryStream buf;
-  auto out = ::mrpt::serialization::archiveFrom(buf);
+  mrpt::io::CMemoryStream buf;
+  auto out = mrpt::serialization::archiveFrom(buf);
   out << o;
   buf.Seek(0);
-  auto in = ::mrpt::serialization::archiveFrom(buf);
+  auto in = mrpt::serialization::archiveFrom(buf);
   return in.ReadObject<T>();
 }
 

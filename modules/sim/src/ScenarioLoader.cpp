@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "ScenarioLoader.h"
 
+#include <dynobj/io/SensorFile.h>
+
 #include <cmath>
 
 namespace dynobj::sim::detail {
@@ -94,7 +96,7 @@ void Loader::loadSensor(const YamlView& root) {
   const std::string rel = root.str("sensor", "sensors/os0-64.ini");
   const std::string path = rel.front() == '/' ? rel : share_ + "/" + rel;
   try {
-    s_.sensor = core::SensorModel::fromFile(path);
+    s_.sensor = io::readSensorModel(path);
   } catch (const std::exception& e) {
     (root.has("sensor") ? root.child("sensor") : root).fail(e.what());
   }

@@ -1,15 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/sim/SequenceWriter.h"
 
-#include <dynobj/core/AtomicFile.h>
-#include <dynobj/mrpt/RangeScanLayout.h>
-#include <dynobj/mrpt/TimeConversion.h>
+#include <dynobj/mrptio/RangeScanLayout.h>
+#include <dynobj/mrptio/TimeConversion.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/poses/CPose3D.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -58,29 +56,20 @@ SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scena
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
-  rawlog_ = std::make_unique<::mrpt::io::CFileGZOutputStream>();
-  if (!rawlog_->open(core::partialName(rawlogPath()), compression))
-    throw std::runtime_error("cannot write '" + core::partialName(rawlogPath()) + "'");
-  labels_ = std::make_unique<core::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
-  instances_ = std::make_unique<core::LabelFileWriter>(instancesPath(), s_.sensor.rows,
-                                                       s_.sensor.cols, true);
-  tum_ = std::make_unique<core::AtomicFile>(tumPath());
-  objects_ = std::make_unique<core::AtomicFile>(objectsPath());
-  tum_->stream() << "# timestamp tx ty tz qx qy qz qw  (sensor '" << s_.sensor_label
-                 << "' in the world)\n";
+  rawlog_ = std::make_unique<mrptio::RawlogWriter>(rawlogPath(), compression);
+  labels_ = std::make_unique<io::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
+  instances_ =
+      std::make_unique<io::LabelFileWriter>(instancesPath(), s_.sensor.rows, s_.sensor.cols, true);
+  tum_ =
+      std::make_unique<io::TumWriter>(tumPath(), "sensor '" + s_.sensor_label + "' in the world");
+  objects_ = std::make_unique<io::AtomicFile>(objectsPath());
   objects_->stream() << "sweep,timestamp_ns,id,class,x,y,z,vx,vy,speed,moving,points\n";
 }
 
-SequenceWriter::~SequenceWriter() {
-  if (closed_) return;
-  rawlog_.reset();
-  std::remove(core::partialName(rawlogPath()).c_str());
-  // the label, instance, TUM and objects writers remove their own partial files
-}
+SequenceWriter::~SequenceWriter() = default;  // every writer removes its own partial file
 
 void SequenceWriter::write(const SimulatedSweep& sw) {
-  auto arch = ::mrpt::serialization::archiveFrom(*rawlog_);
-  const auto stamp = dynobj::mrpt::fromUnixNs(sw.timestamp_ns);
+  const auto stamp = dynobj::mrptio::fromUnixNs(sw.timestamp_ns);
   if (s_.odometry) {  // noisy wheel/leg odometry: true increments plus per-sweep noise
     const ::mrpt::poses::CPose2D truth = planar(sw.robot_pose);
     if (have_last_) {
@@ -99,7 +88,7 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
     odo.sensorLabel = "ODOMETRY";
     odo.timestamp = stamp;
     odo.odometry = odometry_;
-    arch << odo;
+    rawlog_->write(odo);
   }
   const ::mrpt::poses::CPose3D mount(s_.mount.x(), s_.mount.y(), s_.mount.z(), 0, 0, 0);
   if (s_.output == OutputFormat::PointCloud) {
@@ -107,17 +96,17 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
     cloud.sensorLabel = s_.sensor_label;
     cloud.timestamp = stamp;
     cloud.sensorPose = mount;
-    arch << cloud;
+    rawlog_->write(cloud);
   } else {
     ::mrpt::obs::CObservation3DRangeScan scan;
-    dynobj::mrpt::frameToRangeScan(sw.frame, scan);
+    dynobj::mrptio::frameToRangeScan(sw.frame, scan);
     scan.sensorLabel = s_.sensor_label;
     scan.timestamp = stamp;
     scan.sensorPose = mount;
-    arch << scan;
+    rawlog_->write(scan);
   }
 
-  labels_->write(sw.timestamp_ns, core::pixelsOfMask(sw.dynamic));
+  labels_->write(sw.timestamp_ns, io::pixelsOfMask(sw.dynamic));
   std::vector<std::uint32_t> pixels;  // every pixel that hit an actor, moving or not
   std::vector<std::int32_t> ids;
   for (int i = 0; i < sw.actor.rows * sw.actor.cols; i++)
@@ -127,12 +116,7 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
     }
   instances_->write(sw.timestamp_ns, pixels, ids);
 
-  const Eigen::Quaterniond q(sw.sensor_pose.linear());
-  const Eigen::Vector3d& p = sw.sensor_pose.translation();
-  tum_->stream() << std::fixed << std::setprecision(9) << sw.timestamp_ns / 1000000000 << "."
-                 << std::setw(9) << std::setfill('0') << sw.timestamp_ns % 1000000000
-                 << std::setfill(' ') << std::setprecision(6) << " " << p.x() << " " << p.y() << " "
-                 << p.z() << " " << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+  tum_->write(sw.timestamp_ns, sw.sensor_pose);
   for (const ActorState& a : sw.actors)
     objects_->stream() << sw.index << "," << sw.timestamp_ns << "," << a.id << ","
                        << toString(a.cls) << "," << std::setprecision(3) << a.position.x() << ","
@@ -142,14 +126,11 @@ void SequenceWriter::write(const SimulatedSweep& sw) {
 }
 
 void SequenceWriter::close() {
-  rawlog_->close();
-  rawlog_.reset();
+  rawlog_->commit();
   labels_->close();
   instances_->close();
-  tum_->commit();
+  tum_->close();
   objects_->commit();
-  core::commitPartial(rawlogPath());
-  closed_ = true;
 }
 
 }  // namespace dynobj::sim

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/core/LabelFile.h>
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <dynobj/sim/TopView.h>
@@ -98,11 +98,11 @@ TEST(LidarSimulator, SequenceFilesRoundTrip) {
     w.close();
   }
   // Labels: one line per sweep with exactly the dynamic pixels.
-  const auto labels = core::LabelFile::read(dir + "/t.gt.labels");
+  const auto labels = io::LabelFile::read(dir + "/t.gt.labels");
   ASSERT_EQ(labels.sweeps.size(), 10u);
   for (int k = 0; k < 10; k++) {
     EXPECT_EQ(labels.sweeps[k].timestamp_ns, sweeps[k].timestamp_ns);
-    EXPECT_EQ(labels.sweeps[k].pixels, core::pixelsOfMask(sweeps[k].dynamic));
+    EXPECT_EQ(labels.sweeps[k].pixels, io::pixelsOfMask(sweeps[k].dynamic));
   }
   // TUM: the scenario's sensor trajectory (platform moves 1 m/s along +X, sensor 1 m up).
   std::ifstream tum(dir + "/t.gt.tum");
@@ -117,14 +117,14 @@ TEST(LidarSimulator, SequenceFilesRoundTrip) {
     EXPECT_NEAR(qw, 1.0, 1e-6);
   }
   // Rawlog: the scans convert back to the simulated frames.
-  dynobj::mrpt::RawlogReader reader(dir + "/t.rawlog");
-  dynobj::mrpt::RawlogEntry e;
+  dynobj::mrptio::RawlogReader reader(dir + "/t.rawlog");
+  dynobj::mrptio::RawlogEntry e;
   int scans = 0;
   while (reader.next(e)) {
     auto scan = std::dynamic_pointer_cast<::mrpt::obs::CObservation3DRangeScan>(e.observation);
     ASSERT_TRUE(scan);
     core::LidarFrame f;
-    dynobj::mrpt::ObservationConverter().convert(*scan, f);
+    dynobj::mrptio::ObservationConverter().convert(*scan, f);
     EXPECT_EQ(f.validCount(), sweeps[static_cast<std::size_t>(scans)].frame.validCount());
     EXPECT_EQ(f.timestamp_ns, sweeps[static_cast<std::size_t>(scans)].timestamp_ns);
     scans++;

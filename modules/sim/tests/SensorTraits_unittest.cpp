@@ -2,8 +2,8 @@
 // Real sensor traits: Velodyne 0-255 intensities, a unit's own beam errors, and the unordered
 // point-cloud output (laser by laser in firing order, remission 0-1) that the project's reader
 // turns back into the same image.
-#include <dynobj/mrpt/ObservationConverter.h>
-#include <dynobj/mrpt/RawlogReader.h>
+#include <dynobj/mrptio/ObservationConverter.h>
+#include <dynobj/mrptio/RawlogReader.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <gtest/gtest.h>
@@ -105,10 +105,10 @@ TEST(SensorTraits, PointCloudOutputInFiringOrderReadsBackAsTheSameImage) {
     }
     w.close();
   }
-  dynobj::mrpt::RawlogReader reader(dir + "/t.rawlog");
-  dynobj::mrpt::RawlogEntry e;
+  dynobj::mrptio::RawlogReader reader(dir + "/t.rawlog");
+  dynobj::mrptio::RawlogEntry e;
   int n = 0;
-  const dynobj::mrpt::ObservationConverter converter;  // no sensor model: rows from the data
+  const dynobj::mrptio::ObservationConverter converter;  // no sensor model: rows from the data
   while (reader.next(e)) {
     auto obs = std::dynamic_pointer_cast<::mrpt::obs::CObservationPointCloud>(e.observation);
     ASSERT_TRUE(obs);

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// 8-bit renderings of a LidarFrame for people and for OpenCV feature detectors.
+// 8-bit renderings of a LidarFrame for people and for OpenCV feature detectors (writing them as
+// PNG files: dynobj/io/Png.h).
 #pragma once
 
 #include <opencv2/core.hpp>
-#include <string>
 
 #include "dynobj/core/LidarFrame.h"
 
@@ -17,6 +17,9 @@ cv::Mat_<std::uint8_t> stretchToU8(const cv::Mat_<float>& image, const cv::Mat_<
 
 /// Range image, near = warm colours (TURBO colour map scaled to [0, max_range]); no return = black.
 cv::Mat rangeToColor(const LidarFrame& frame, double max_range);
+/// rangeToColor scaled to the 98th percentile of the frame's ranges (indoor and outdoor scans
+/// both use the whole colour map); the sensor's max range when the frame has no return.
+cv::Mat rangeToColor(const LidarFrame& frame);
 
 /// Intensity image stretched with stretchToU8; the range image when the frame has no intensity.
 cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame);
@@ -28,12 +31,5 @@ cv::Mat overlayMask(const cv::Mat_<std::uint8_t>& gray, const cv::Mat_<std::uint
 /// Repeats each row `row_scale` times (nearest neighbour) so that a 16- or 64-row image is
 /// readable on screen.
 cv::Mat scaleRows(const cv::Mat& image, int row_scale);
-
-/// Writes <prefix>range.png and <prefix>intensity.png. Throws std::runtime_error naming the file
-/// when it cannot be written.
-void writeFramePngs(const LidarFrame& frame, const std::string& prefix, int row_scale = 1);
-
-/// cv::imwrite that throws std::runtime_error naming the path on failure.
-void writePng(const std::string& path, const cv::Mat& image);
 
 }  // namespace dynobj::core

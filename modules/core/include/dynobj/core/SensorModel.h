@@ -40,9 +40,6 @@ struct SensorModel : public ::mrpt::config::CLoadableOptions {
   /// Throws ParameterError naming the first bad key.
   void validate() const;
 
-  /// Loads and validates `section` of an INI file; throws ParameterError naming file and key.
-  static SensorModel fromFile(const std::string& ini_path, const std::string& section = "sensor");
-
   /// True when beams are evenly spaced (no table): rows follow Eq. (1) exactly.
   bool isUniform() const { return beam_elevations.empty(); }
   /// Beam centre elevations ordered by image row (row 0 = highest) [rad].

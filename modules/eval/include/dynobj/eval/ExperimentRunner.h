@@ -13,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "dynobj/eval/DriftModel.h"
 #include "dynobj/eval/RunResult.h"
@@ -45,6 +46,14 @@ struct RunOptions {
 
   static const std::set<std::string>& modes();
   static std::string describe(const std::string& mode, const DriftParams& drift);
+  /// "a,b,..." -> modes, checked; empty: all four with ground-truth poses, else "intensity".
+  /// Throws std::invalid_argument naming an unknown one.
+  static std::vector<std::string> parseModes(const std::string& list, bool have_poses);
+  /// `count` evenly spaced sweeps of `frames` (skipping the first window, where nothing can be
+  /// flagged yet).
+  static std::set<int> evenlySpacedSweeps(int count, std::size_t frames);
+  /// "i,j,..." -> sweep indices in [0, frames); throws std::invalid_argument naming a bad one.
+  static std::set<int> parseSweeps(const std::string& list, std::size_t frames);
 };
 
 /// Throws EvaluationError (mismatched ground truth, missing poses) or the readers' errors.

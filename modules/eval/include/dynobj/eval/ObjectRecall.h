@@ -5,7 +5,7 @@
 // from <name>.gt.objects.csv.
 #pragma once
 
-#include <dynobj/core/LabelFile.h>
+#include <dynobj/io/LabelFile.h>
 
 #include <cstdint>
 #include <map>
@@ -39,7 +39,7 @@ class ObjectRecall {
 
   /// One sweep: its instance pixels, the predicted dynamic pixels (ascending) and its moving
   /// objects. Throws EvaluationError when the timestamps differ.
-  void add(const core::LabelSweep& instances, const std::vector<std::uint32_t>& predicted,
+  void add(const io::LabelSweep& instances, const std::vector<std::uint32_t>& predicted,
            const GroundTruthObjects::Sweep& objects);
 
   const ObjectTally& total() const { return total_; }

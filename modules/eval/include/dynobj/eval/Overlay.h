@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Overlay images: the intensity image with true positives in red, false positives in yellow and
-// misses (false negatives) in blue, the tracked objects' ids beside them; and a contact sheet.
+// misses (false negatives) in blue, the tracked objects' ids beside them (without ground truth:
+// the dynamic pixels in red); and a contact sheet.
 #pragma once
 
 #include <dynobj/core/DynamicObjectDetector.h>
@@ -14,14 +15,12 @@
 namespace dynobj::eval {
 
 /// BGR image, rows scaled by `row_scale` (64-row images are flat). `objects` may be empty.
+/// Without ground truth (`truth` empty) the predicted pixels are red.
 cv::Mat overlayImage(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& predicted,
                      const cv::Mat_<std::uint8_t>& truth,
                      const std::vector<core::TrackedObject>& objects, int row_scale = 2);
 
 /// The images stacked vertically, each with its caption on a dark band above it.
 cv::Mat contactSheet(const std::vector<std::pair<std::string, cv::Mat>>& captioned);
-
-/// Mask of the given ascending pixel indices.
-cv::Mat_<std::uint8_t> maskOfPixels(const std::vector<std::uint32_t>& pixels, int rows, int cols);
 
 }  // namespace dynobj::eval

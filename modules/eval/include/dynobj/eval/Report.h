@@ -2,7 +2,7 @@
 // Reports of evaluation runs: a Markdown table laid out like the paper's Table I (precision, IoU,
 // recall, F1, plus object recall, static points flagged and ms/frame), a per-sweep CSV, a JSON
 // summary and one self-contained HTML page (tables, per-sweep plots as inline SVG, overlay images
-// as inline PNG). Every file is written through core::AtomicFile (complete or absent).
+// as inline PNG). Every file is written through io::AtomicFile (complete or absent).
 #pragma once
 
 #include <ostream>

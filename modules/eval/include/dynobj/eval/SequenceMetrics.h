@@ -6,8 +6,8 @@
 // denominator is zero is undefined (std::nullopt, printed "n/a"), never 0 or 1.
 #pragma once
 
-#include <dynobj/core/LabelFile.h>
-#include <dynobj/core/Metrics.h>
+#include <dynobj/eval/Metrics.h>
+#include <dynobj/io/LabelFile.h>
 
 #include <optional>
 #include <stdexcept>
@@ -24,7 +24,7 @@ class EvaluationError : public std::runtime_error {
 
 struct SweepMetrics {
   std::int64_t timestamp_ns = 0;
-  core::Confusion counts;  ///< tp, fp, fn; tn when the sweep's valid point count is known
+  eval::Confusion counts;  ///< tp, fp, fn; tn when the sweep's valid point count is known
   double ms = -1;          ///< detector time [ms] (-1 = unknown)
 };
 
@@ -36,7 +36,7 @@ struct Distribution {
 
 struct SequenceMetrics {
   std::vector<SweepMetrics> sweeps;
-  core::Confusion total;     ///< summed over every point of every sweep (micro)
+  eval::Confusion total;     ///< summed over every point of every sweep (micro)
   bool static_known = true;  ///< every sweep's valid point count was given (tn is meaningful)
 
   /// Appends one sweep: ascending pixel lists; `valid_points` < 0 when unknown (tn then 0).
@@ -48,7 +48,7 @@ struct SequenceMetrics {
 
   /// Matches the two files sweep by sweep. Both must have the same image size and exactly the
   /// same timestamps in the same order; otherwise EvaluationError names the first mismatch.
-  static SequenceMetrics compute(const core::LabelFile& truth, const core::LabelFile& predicted);
+  static SequenceMetrics compute(const io::LabelFile& truth, const io::LabelFile& predicted);
 
   enum class Metric { Precision, Recall, IoU, F1 };
   Distribution distribution(Metric m) const;

@@ -4,7 +4,7 @@
 // x y z intensity (float32) atomically, optionally streaming points of unknown count.
 #pragma once
 
-#include <dynobj/core/AtomicFile.h>
+#include <dynobj/io/AtomicFile.h>
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -23,7 +23,7 @@ namespace dynobj::io {
 /// error. Throws FormatError "<path>: <problem>" (ascii data: "<path>:<line>: <problem>").
 CloudFile readPcd(const std::string& path);
 
-/// Writes a binary PCD v0.7 with fields x y z intensity (float32) through core::AtomicFile: the
+/// Writes a binary PCD v0.7 with fields x y z intensity (float32) through io::AtomicFile: the
 /// file appears under its name only on close(). With `points` given, WIDTH and POINTS are written
 /// up front (close() checks that many were added); without, a fixed-width blank field is reserved
 /// and patched on close(), so memory stays flat whatever the count.
@@ -40,7 +40,7 @@ class PcdWriter {
   void close();
 
  private:
-  core::AtomicFile file_;
+  io::AtomicFile file_;
   std::optional<std::size_t> announced_;
   std::streampos width_pos_, points_pos_;
   std::size_t count_ = 0;

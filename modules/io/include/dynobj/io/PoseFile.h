@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Trajectory files: KITTI odometry poses (12 numbers a line: the 3x4 matrix [R | t] row by row,
-// no time stamps) and TUM (8 numbers: t tx ty tz qx qy qz qw, t in seconds); '#' comments.
+// no time stamps) and TUM (8 numbers: t tx ty tz qx qy qz qw, t in seconds); '#' comments. The
+// project's one TUM reader (readPoseFile), writer (TumWriter) and time lookup (findPose).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "dynobj/io/AtomicFile.h"
 #include "dynobj/io/FormatError.h"
 
 namespace dynobj::io {
@@ -28,6 +30,24 @@ enum class PoseFormat { Auto, Kitti, Tum };
 /// more than 1e-3), a 3x3 part that is not a rotation (|R'R - I| > 1e-3 or det < 0), TUM stamps
 /// not increasing; "<path>: <problem>" for a missing file or one without poses.
 std::vector<TimedPose> readPoseFile(const std::string& path, PoseFormat format = PoseFormat::Auto);
+
+/// The pose whose timestamp is within `tolerance_ns` of `t` (the nearest), or nullptr. `poses`
+/// sorted by time (as readPoseFile returns a TUM file).
+const TimedPose* findPose(const std::vector<TimedPose>& poses, std::int64_t t,
+                          std::int64_t tolerance_ns = 1000000);
+
+/// Streams a TUM file through an AtomicFile: "# timestamp tx ty tz qx qy qz qw  (<note>)", then
+/// one line a pose, the time with 9 decimals, the rest with 6.
+class TumWriter {
+ public:
+  TumWriter(const std::string& path, const std::string& note);
+  void write(std::int64_t timestamp_ns, const Eigen::Isometry3d& pose);
+  /// Renames into place; throws std::runtime_error on an I/O error.
+  void close() { file_.commit(); }
+
+ private:
+  AtomicFile file_;
+};
 
 /// A time in seconds as text ("1317354879.123456789", "0.1", "1.036602e-01") in nanoseconds;
 /// plain decimals are converted exactly, exponent forms through double. nullopt if not a number.

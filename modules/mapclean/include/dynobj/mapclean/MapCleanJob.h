@@ -59,6 +59,9 @@ struct MapCleanSummary {
 using MapCleanProgress =
     std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
+/// What dynobj-mapclean prints: scans, pose source, map sizes, simplemap, export, metrics, time.
+std::string summaryText(const MapCleanSummary& summary, const MapCleanOptions& opts);
+
 /// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input.
 MapCleanSummary runMapClean(const MapCleanOptions& opts, const MapCleanProgress& progress = {});
 

@@ -56,13 +56,12 @@ struct MapCleanParams : public core::StageParams {
   /// ground plane; for planar / drifting pose sources on a level floor. Off: assumes nothing.
   bool level_poses = false;
   int free_space_stride = 2;
-  double free_space_margin = 0.3;       ///< [m]
-  double free_space_margin_rel = 0.05;  ///< share of the voxel's range
-  int free_space_window = 1;            ///< [px] half-size of the window
-  int free_space_min_views = 2;
-  double free_space_ratio = 4.0;
+  /// The check's own parameters (INI keys free_space_margin, free_space_margin_rel,
+  /// free_space_window, free_space_min_views, free_space_ratio; min_range is the one above).
+  VisibilityParams visibility;
 
-  FreeSpaceParams freeSpace() const;
+  /// `visibility` with this min_range.
+  VisibilityParams freeSpace() const;
 
   void visit(core::ParamVisitor& v) override;
   void validate() const override;

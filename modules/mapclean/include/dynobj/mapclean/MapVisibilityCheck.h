@@ -29,7 +29,9 @@ class SphericalProjection;
 
 namespace dynobj::mapclean {
 
-struct FreeSpaceParams {
+/// Parameters of the map's visibility check (not the detector's core::FreeSpaceParams: this one
+/// tests map voxels against whole scans).
+struct VisibilityParams {
   double margin = 0.3;       ///< [m] a return must lie this much beyond the voxel ...
   double margin_rel = 0.05;  ///< ... plus this share of the voxel's range
   int window = 1;            ///< [px] half-size of the window whose nearest return must be beyond
@@ -41,7 +43,7 @@ struct FreeSpaceParams {
 class MapVisibilityCheck {
  public:
   /// `voxels`: the candidates (key + centre), e.g. VoxelMap::voxels() of the static map.
-  MapVisibilityCheck(const FreeSpaceParams& p, std::vector<VoxelCentre> voxels);
+  MapVisibilityCheck(const VisibilityParams& p, std::vector<VoxelCentre> voxels);
   ~MapVisibilityCheck();
   MapVisibilityCheck(const MapVisibilityCheck&) = delete;
   MapVisibilityCheck& operator=(const MapVisibilityCheck&) = delete;
@@ -58,7 +60,7 @@ class MapVisibilityCheck {
   std::uint16_t hitViews(std::size_t i) const { return hit_[i]; }
 
  private:
-  FreeSpaceParams p_;
+  VisibilityParams p_;
   std::vector<VoxelCentre> voxels_;
   std::vector<std::uint16_t> free_, hit_;
   std::unique_ptr<core::SphericalProjection> projection_;

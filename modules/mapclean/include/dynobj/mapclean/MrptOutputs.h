@@ -35,7 +35,7 @@ class CleanedSimplemapWriter {
  private:
   std::string path_;
   double dist_, angle_;
-  ::mrpt::maps::CSimpleMap map_;
+  mrpt::maps::CSimpleMap map_;
   bool have_last_ = false;
   Eigen::Isometry3d last_ = Eigen::Isometry3d::Identity();
 };

@@ -2,10 +2,10 @@
 // Point-cloud files of the map cleaner, in MapPoint form: PCD v0.7 (the KTH DynamicMap
 // benchmark's format: fields x y z intensity, VIEWPOINT = sensor pose as "tx ty tz qw qx qy qz")
 // and binary PLY. The PCD reading and writing itself is dynobj::io's (PcdFile.h); these adapt it.
-// Every writer is atomic (core::AtomicFile): a file with the final name is complete.
+// Every writer is atomic (io::AtomicFile): a file with the final name is complete.
 #pragma once
 
-#include <dynobj/core/AtomicFile.h>
+#include <dynobj/io/AtomicFile.h>
 #include <dynobj/io/FormatError.h>
 #include <dynobj/io/PcdFile.h>
 

@@ -5,37 +5,20 @@
 // with a sensor model). Can be opened again for a second pass.
 #pragma once
 
-#include <dynobj/core/LidarFrame.h>
 #include <dynobj/core/SensorModel.h>
-#include <mrpt/obs/CObservation.h>
+#include <dynobj/mrptio/FrameSource.h>
 
-#include <Eigen/Geometry>
-#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
 
 namespace dynobj::mapclean {
 
-struct Scan {
-  std::size_t index = 0;   ///< LiDAR scan number in the input (0-based)
-  std::string where;       ///< for messages: "entry 12" or "pcd/000012.pcd"
-  core::LidarFrame frame;  ///< sensor frame; frame.timestamp_ns is the scan time
-  Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  ///< sensor pose on the robot
-  std::optional<Eigen::Isometry3d> odometry;   ///< robot pose of the latest odometry (rawlog)
-  std::optional<Eigen::Isometry3d> viewpoint;  ///< sensor pose given by the input (PCD VIEWPOINT)
-  ::mrpt::obs::CObservation::Ptr observation;  ///< the rawlog's observation (null for PCD input)
-};
-
-class ScanSource {
- public:
-  virtual ~ScanSource() = default;
-  /// Next scan; false at the end. Throws with the file and entry named on bad input.
-  virtual bool next(Scan& scan) = 0;
-  /// Starts again from the first scan.
-  virtual void rewind() = 0;
-  virtual std::string describe() const = 0;
-};
+/// A scan to map: SequenceRunner's frame (rawlog: the observation, its mount and the latest
+/// odometry; PCD folder: the VIEWPOINT).
+using Scan = mrptio::Frame;
+/// Scans one at a time; rewind() for the next pass.
+using ScanSource = mrptio::FrameSource;
 
 struct ScanSourceOptions {
   std::string sensor_label;                 ///< rawlog: only this label (empty = every LiDAR one)

@@ -23,8 +23,9 @@ struct TopDownView {
                          double resolution = 0.05, int max_pixels = 4000);
 };
 
-/// BGR image: black = nothing, grey = static (height), red = dynamic.
+/// BGR image: black = nothing, grey = static (height), red = dynamic (a disc of
+/// `dynamic_radius` pixels around each when > 0, so that a few points show).
 cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& static_points,
-                      const std::vector<MapPoint>& dynamic_points);
+                      const std::vector<MapPoint>& dynamic_points, int dynamic_radius = 0);
 
 }  // namespace dynobj::mapclean

@@ -9,9 +9,10 @@
 // is always complete.
 #pragma once
 
-#include <dynobj/core/AtomicFile.h>
-#include <dynobj/core/LabelFile.h>
-#include <mrpt/io/CFileGZOutputStream.h>
+#include <dynobj/io/AtomicFile.h>
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/io/PoseFile.h>
+#include <dynobj/mrptio/RawlogWriter.h>
 #include <mrpt/poses/CPose2D.h>
 
 #include <fstream>
@@ -48,10 +49,10 @@ class SequenceWriter {
  private:
   const Scenario& s_;
   std::string base_;
-  std::unique_ptr<::mrpt::io::CFileGZOutputStream> rawlog_;
-  std::unique_ptr<core::LabelFileWriter> labels_, instances_;
-  std::unique_ptr<core::AtomicFile> tum_, objects_;
-  bool closed_ = false;
+  std::unique_ptr<mrptio::RawlogWriter> rawlog_;
+  std::unique_ptr<io::LabelFileWriter> labels_, instances_;
+  std::unique_ptr<io::TumWriter> tum_;
+  std::unique_ptr<io::AtomicFile> objects_;
   std::mt19937 odo_rng_;
   ::mrpt::poses::CPose2D odometry_;
   ::mrpt::poses::CPose2D last_true_;

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/io/LabelFile.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace dynobj::io {
+namespace {
+
+[[noreturn]] void bad(const std::string& path, std::size_t line, const std::string& what) {
+  throw LabelFileError(path + ":" + std::to_string(line) + ": " + what);
+}
+
+}  // namespace
+
+LabelFile LabelFile::read(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw LabelFileError(path + ": cannot open label file");
+  LabelFile f;
+  std::string text;
+  std::size_t line_no = 1;
+  if (!std::getline(in, text)) bad(path, 1, "empty file (expected '# dynobj-labels v1 ...')");
+  {
+    char tail = 0;
+    f.instances = text.rfind("# dynobj-instances ", 0) == 0;
+    const int got = f.instances
+                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%d cols=%d %c",
+                                      &f.rows, &f.cols, &tail)
+                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c",
+                                      &f.rows, &f.cols, &tail);
+    if (got != 2 || f.rows <= 0 || f.cols <= 0)
+      bad(path, 1,
+          "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
+              " or '# dynobj-instances v1 rows=<H> cols=<W>')");
+  }
+  const std::uint64_t n_pixels =
+      static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
+  while (std::getline(in, text)) {
+    line_no++;
+    if (text.empty()) bad(path, line_no, "empty line");
+    std::istringstream ss(text);
+    LabelSweep s;
+    long long count = -1;
+    if (!(ss >> s.timestamp_ns >> count) || count < 0)
+      bad(path, line_no, "expected '<timestamp_ns> <count> <idx>...'");
+    if (!f.sweeps.empty() && s.timestamp_ns <= f.sweeps.back().timestamp_ns)
+      bad(path, line_no,
+          "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
+    s.pixels.reserve(static_cast<std::size_t>(count));
+    long long idx = 0;
+    char colon = 0;
+    std::int32_t id = 0;
+    while (ss >> idx) {
+      if (f.instances && !(ss >> colon >> id && colon == ':'))
+        bad(path, line_no, "expected '<idx>:<id>' at pixel " + std::to_string(idx));
+      if (idx < 0 || static_cast<std::uint64_t>(idx) >= n_pixels)
+        bad(path, line_no,
+            "index " + std::to_string(idx) + " is outside the " + std::to_string(f.rows) + "x" +
+                std::to_string(f.cols) + " image");
+      if (!s.pixels.empty() && static_cast<std::uint32_t>(idx) <= s.pixels.back())
+        bad(path, line_no, "indices are not strictly ascending at " + std::to_string(idx));
+      s.pixels.push_back(static_cast<std::uint32_t>(idx));
+      if (f.instances) s.ids.push_back(id);
+    }
+    if (!ss.eof()) bad(path, line_no, "non-numeric token");
+    if (static_cast<long long>(s.pixels.size()) != count)
+      bad(path, line_no,
+          "count says " + std::to_string(count) + " but " + std::to_string(s.pixels.size()) +
+              " indices follow");
+    f.sweeps.push_back(std::move(s));
+  }
+  return f;
+}
+
+std::vector<std::uint32_t> pixelsOfMask(const cv::Mat_<std::uint8_t>& mask) {
+  std::vector<std::uint32_t> out;
+  for (int r = 0; r < mask.rows; r++) {
+    const std::uint8_t* row = mask.ptr<std::uint8_t>(r);
+    for (int c = 0; c < mask.cols; c++)
+      if (row[c]) out.push_back(static_cast<std::uint32_t>(r * mask.cols + c));
+  }
+  return out;
+}
+
+cv::Mat_<std::uint8_t> maskOfPixels(const std::vector<std::uint32_t>& pixels, int rows, int cols) {
+  cv::Mat_<std::uint8_t> m(rows, cols, std::uint8_t{0});
+  for (std::uint32_t px : pixels) m(static_cast<int>(px) / cols, static_cast<int>(px) % cols) = 255;
+  return m;
+}
+
+LabelFileWriter::LabelFileWriter(const std::string& path, int rows, int cols, bool instances)
+    : file_(path), rows_(rows), cols_(cols), instances_(instances) {
+  if (rows <= 0 || cols <= 0) throw std::invalid_argument("LabelFileWriter: bad image size");
+  file_.stream() << (instances ? "# dynobj-instances v1 rows=" : "# dynobj-labels v1 rows=") << rows
+                 << " cols=" << cols << "\n";
+}
+
+void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels,
+                            const std::vector<std::int32_t>& ids) {
+  if (any_ && timestamp_ns <= last_ts_)
+    throw std::invalid_argument("LabelFileWriter: timestamps must increase");
+  if (ids.size() != (instances_ ? pixels.size() : 0))
+    throw std::invalid_argument(
+        "LabelFileWriter: an instance file needs one id per pixel, a label file none");
+  const auto n = static_cast<std::uint64_t>(rows_) * static_cast<std::uint64_t>(cols_);
+  file_.stream() << timestamp_ns << ' ' << pixels.size();
+  for (std::size_t i = 0; i < pixels.size(); i++) {
+    if (pixels[i] >= n || (i > 0 && pixels[i] <= pixels[i - 1]))
+      throw std::invalid_argument("LabelFileWriter: pixels must be ascending and inside the image");
+    file_.stream() << ' ' << pixels[i];
+    if (instances_) file_.stream() << ':' << ids[i];
+  }
+  file_.stream() << '\n';
+  any_ = true;
+  last_ts_ = timestamp_ns;
+}
+
+void LabelFileWriter::close() {
+  file_.commit();
+}
+
+}  // namespace dynobj::io

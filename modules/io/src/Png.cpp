@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/io/Png.h"
+
+#include <dynobj/core/FrameImages.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "dynobj/io/AtomicFile.h"
+
+namespace dynobj::io {
+
+void writePng(const std::string& path, const cv::Mat& image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, image);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  }
+  if (!ok)
+    throw std::runtime_error("cannot write '" + path + "' (directory missing or not writable?)");
+}
+
+void writePngAtomically(const std::string& path, const cv::Mat& image) {
+  PartialPath file(path, ".png");  // OpenCV picks the codec by the extension
+  writePng(file.partial(), image);
+  file.commit();
+}
+
+void writeFramePngs(const core::LidarFrame& frame, const std::string& prefix, int row_scale) {
+  writePng(prefix + "range.png", core::scaleRows(core::rangeToColor(frame), row_scale));
+  writePng(prefix + "intensity.png", core::scaleRows(core::intensityToU8(frame), row_scale));
+}
+
+}  // namespace dynobj::io

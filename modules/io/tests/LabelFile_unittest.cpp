@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/io/LabelFile.h>
+#include <gtest/gtest.h>
+#include <mrpt/system/filesystem.h>
+
+#include <fstream>
+
+using namespace dynobj::io;
+
+namespace {
+
+std::string temp(const std::string& name) {
+  return ::mrpt::system::getTempFileName() + name;
+}
+
+std::string writeText(const std::string& text) {
+  const auto p = temp(".labels");
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    LabelFile::read(writeText(text));
+  } catch (const LabelFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(LabelFile, WriteReadRoundTrip) {
+  const auto path = temp(".labels");
+  {
+    LabelFileWriter w(path, 4, 8);
+    EXPECT_FALSE(::mrpt::system::fileExists(path));  // only the .partial until close()
+    w.write(100, {});
+    w.write(200, {0, 9, 31});
+    w.close();
+  }
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(text, "# dynobj-labels v1 rows=4 cols=8\n100 0\n200 3 0 9 31\n");
+  const auto f = LabelFile::read(path);
+  EXPECT_EQ(f.rows, 4);
+  EXPECT_EQ(f.cols, 8);
+  ASSERT_EQ(f.sweeps.size(), 2u);
+  EXPECT_EQ(f.sweeps[1].timestamp_ns, 200);
+  EXPECT_EQ(f.sweeps[1].pixels, (std::vector<std::uint32_t>{0, 9, 31}));
+}
+
+TEST(LabelFile, UnclosedWriterLeavesNoFile) {
+  const auto path = temp(".labels");
+  {
+    LabelFileWriter w(path, 2, 2);
+    w.write(1, {3});
+  }
+  EXPECT_FALSE(::mrpt::system::fileExists(path));
+  EXPECT_FALSE(::mrpt::system::fileExists(path + ".partial"));
+}
+
+TEST(LabelFile, ErrorsNameTheLine) {
+  EXPECT_NE(errorOf("").find(":1: empty"), std::string::npos);
+  EXPECT_NE(errorOf("# dynobj-labels v2 rows=4 cols=8\n").find(":1: bad header"),
+            std::string::npos);
+  const std::string h = "# dynobj-labels v1 rows=4 cols=8\n";
+  EXPECT_NE(errorOf(h + "10 1 32\n").find(":2: index 32 is outside the 4x8"), std::string::npos);
+  EXPECT_NE(errorOf(h + "10 2 5 3\n").find(":2: indices are not strictly ascending"),
+            std::string::npos);
+  EXPECT_NE(errorOf(h + "10 0\n20 2 1\n").find(":3: count says 2 but 1"), std::string::npos);
+  EXPECT_NE(errorOf(h + "10 0\n10 0\n").find(":3: timestamp 10 is not after"), std::string::npos);
+  EXPECT_NE(errorOf(h + "10 1 x\n").find(":2: non-numeric"), std::string::npos);
+  EXPECT_NE(errorOf(h + "abc\n").find(":2: expected"), std::string::npos);
+  EXPECT_EQ(errorOf(h + "10 0\n"), "");
+}
+
+TEST(LabelFile, PixelsOfMaskAscending) {
+  cv::Mat_<std::uint8_t> m(2, 3, std::uint8_t{0});
+  m(1, 0) = 1;
+  m(0, 2) = 255;
+  EXPECT_EQ(pixelsOfMask(m), (std::vector<std::uint32_t>{2, 3}));
+}
+
+TEST(LabelFile, InstanceFileRoundTripAndErrors) {
+  const auto path = temp(".instances");
+  {
+    LabelFileWriter w(path, 4, 8, true);
+    w.write(100, {});
+    w.write(200, {3, 9}, {7, 2});
+    EXPECT_THROW(w.write(300, {1}), std::invalid_argument);  // an id per pixel is required
+    w.close();
+  }
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "# dynobj-instances v1 rows=4 cols=8\n100 0\n200 2 3:7 9:2\n");
+  const LabelFile f = LabelFile::read(path);
+  EXPECT_TRUE(f.instances);
+  ASSERT_EQ(f.sweeps.size(), 2u);
+  EXPECT_EQ(f.sweeps[1].pixels, (std::vector<std::uint32_t>{3, 9}));
+  EXPECT_EQ(f.sweeps[1].ids, (std::vector<std::int32_t>{7, 2}));
+  EXPECT_NE(errorOf("# dynobj-instances v1 rows=4 cols=8\n100 1 3\n")
+                .find(":2: expected '<idx>:<id>' at pixel 3"),
+            std::string::npos);
+  EXPECT_TRUE(LabelFile::read(writeText("# dynobj-labels v1 rows=4 cols=8\n100 1 3\n"))
+                  .sweeps[0]
+                  .ids.empty());
+}

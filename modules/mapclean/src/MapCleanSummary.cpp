@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The text dynobj-mapclean prints after a job.
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+#include "dynobj/mapclean/MapCleanJob.h"
+
+namespace dynobj::mapclean {
+namespace {
+
+std::string fmt(const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  std::string b(static_cast<std::size_t>(std::vsnprintf(nullptr, 0, format, args)) + 1, '\0');
+  va_end(args);
+  std::vsnprintf(b.data(), b.size(), format, again);
+  va_end(again);
+  b.pop_back();
+  return b;
+}
+
+std::string pct(const std::optional<double>& v) {
+  if (!v) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof(b), "%.2f%%", 100.0 * *v);
+  return b;
+}
+
+}  // namespace
+
+std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
+  std::string out;
+  out += fmt("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
+             o.clean.level_poses ? " (leveled with the floor)" : "",
+             o.clean.second_pass ? "two passes" : "single pass");
+  out += fmt(
+      "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
+      "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "
+      "check\n",
+      s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
+      s.backfilled, s.voted, s.seen_through);
+  if (o.write_simplemap) out += fmt("  cleaned simplemap: %zu keyframes\n", s.keyframes);
+  if (!o.export_kth.empty())
+    out += fmt("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,
+               o.export_kth.c_str());
+  if (s.scores) {
+    const auto& m = *s.scores;
+    out += fmt(
+        "  SA %s  DA %s  AA %s  ghost points %zu  (GT static %zu kept %zu, GT dynamic %zu removed "
+        "%zu, "
+        "tolerance %.3f m)\n",
+        pct(m.sa()).c_str(), pct(m.da()).c_str(), pct(m.aa()).c_str(), m.ghost_points, m.gt_static,
+        m.static_kept, m.gt_dynamic, m.dynamic_removed, o.tolerance);
+  }
+  out += fmt("  %.1f s -> %s\n", s.seconds, o.out_dir.c_str());
+  return out;
+}
+
+}  // namespace dynobj::mapclean

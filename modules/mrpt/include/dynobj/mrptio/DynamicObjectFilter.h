@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The MRPT observation filter, for MRPT chains that hand over one observation at a time
+// (rawlog-dynobj, icp-slam-dynobj, your own app): one detector per sensor label (DetectorBank),
+// fed observations in time order, tagging each supported LiDAR observation in place
+// (docs/formats.md §4, "Dynamic tags"):
+//   mark    - labels only (CObservation3DRangeScan pixelLabels bit "dynamic");
+//   drop    - mark + the dynamic points removed from what stock map insertion reads (default);
+//   split   - drop + the removed points as a CObservationPointCloud "<label>_DYNAMIC" after it;
+//   restore - undoes drop (no detection).
+// Non-LiDAR observations pass through untouched; a LiDAR observation that cannot be processed
+// passes through untouched too, with a warning counted in the summary.
+#pragma once
+
+#include <dynobj/core/DynamicObjectDetector.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynobj/mrptio/DetectorBank.h"
+#include "dynobj/mrptio/ObservationConverter.h"
+
+namespace dynobj::mrptio {
+
+enum class FilterMode { Mark, Drop, Split, Restore };
+
+/// "mark", "drop", "split", "restore"; throws std::invalid_argument listing them.
+FilterMode parseFilterMode(const std::string& name);
+const char* toString(FilterMode m);
+
+struct FilterSummary {
+  std::size_t observations = 0;    ///< every observation seen
+  std::size_t lidar = 0;           ///< LiDAR observations processed (tagged)
+  std::size_t points = 0;          ///< their points
+  std::size_t dynamic_points = 0;  ///< of which dynamic (flagged, removed or restored)
+  std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
+  std::map<std::string, std::size_t> warnings;  ///< message -> count
+  double detector_ms = 0;                       ///< total detector time
+};
+
+class DynamicObjectFilter {
+ public:
+  struct Options {
+    FilterMode mode = FilterMode::Drop;
+    std::string sensor_label;                 ///< only this label; empty = every LiDAR observation
+    std::optional<core::SensorModel> sensor;  ///< geometry for point clouds / rotating scans
+    core::DetectorParams detector;
+  };
+
+  explicit DynamicObjectFilter(Options opts);
+
+  /// Filters one observation in place. In split mode the removed points are appended to `extra`
+  /// (when given). Returns this observation's detection, or nullptr when it was not processed.
+  const core::DetectionResult* filter(const mrpt::obs::CObservation::Ptr& obs,
+                                      std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr);
+  /// Every observation of a sensory frame; split-mode extras are inserted into it.
+  void filter(mrpt::obs::CSensoryFrame& sf);
+
+  const FilterSummary& summary() const { return summary_; }
+  const Options& options() const { return opts_; }
+  /// The frame of the last processed observation (for label output).
+  const core::LidarFrame& lastFrame() const { return frame_; }
+
+ private:
+  void warn(const std::string& message);
+
+  Options opts_;
+  ObservationConverter converter_;
+  DetectorBank detectors_;  ///< one detector per sensor label
+  core::LidarFrame frame_;
+  FilterSummary summary_;
+};
+
+}  // namespace dynobj::mrptio

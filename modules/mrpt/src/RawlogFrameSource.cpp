@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/mrptio/RawlogFrameSource.h"
+
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include "dynobj/mrptio/PoseConversion.h"
+
+namespace dynobj::mrptio {
+
+RawlogFrameSource::RawlogFrameSource(std::string rawlog, ObservationConverter converter,
+                                     Options opts)
+    : path_(std::move(rawlog)), converter_(std::move(converter)), opts_(std::move(opts)) {
+  rewind();
+}
+
+void RawlogFrameSource::rewind() {
+  reader_ = std::make_unique<RawlogReader>(path_);
+  pending_.clear();
+  pending_pos_ = 0;
+  frames_ = 0;
+  odometry_.reset();
+}
+
+bool RawlogFrameSource::next(Frame& f) {
+  for (;;) {
+    while (pending_pos_ < pending_.size()) {
+      const auto obs = pending_[pending_pos_++];
+      if (!obs) continue;
+      labels_.emplace(obs->sensorLabel, obs->GetRuntimeClass()->className);
+      if (const auto* odo = dynamic_cast<const mrpt::obs::CObservationOdometry*>(obs.get())) {
+        odometry_ = toIsometry(mrpt::poses::CPose3D(odo->odometry));
+        continue;
+      }
+      if (!ObservationConverter::isLidarObservation(*obs)) continue;
+      if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) continue;
+      f.stats = converter_.convert(*obs, f.frame);
+      mrpt::poses::CPose3D mount;
+      obs->getSensorPose(mount);
+      f.index = frames_++;
+      f.entry = entry_.index;
+      f.where = "'" + path_ + "' entry " + std::to_string(entry_.index);
+      f.sensor_label = obs->sensorLabel;
+      f.mount = toIsometry(mount);
+      f.odometry = odometry_;
+      f.viewpoint.reset();
+      f.observation = obs;
+      return true;
+    }
+    if (!reader_->next(entry_)) return false;
+    if (entry_.index > opts_.to) return false;
+    pending_.clear();
+    pending_pos_ = 0;
+    if (entry_.index >= opts_.from) pending_ = entry_.observations();
+  }
+}
+
+}  // namespace dynobj::mrptio

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SequenceRunner: per-sensor detectors, the one-sensor rule, external motion from TUM poses per
+// sensor, ground truth matched by timestamp (and the errors naming what does not match).
+#include <dynobj/mrptio/SequenceRunner.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace dm = dynobj::mrptio;
+using dynobj::core::LidarFrame;
+using dynobj::core::SensorModel;
+
+namespace {
+
+/// `n` frames of an 8 x 32 sensor (a ring of returns at 5 m), 0.1 s apart from t = 1 s, labels
+/// alternating between `labels`.
+class FakeFrames : public dm::FrameSource {
+ public:
+  FakeFrames(int n, std::vector<std::string> labels) : n_(n), labels_(std::move(labels)) {}
+  bool next(dm::Frame& f) override {
+    if (k_ >= n_) return false;
+    SensorModel s;
+    s.rows = 8;
+    s.cols = 32;
+    f.frame = LidarFrame(s);
+    for (int c = 0; c < 32; c++) f.frame.setPixel(4, c, 5.f, 100.f, cv::Vec3f(5.f, 0.f, 0.f), c);
+    f.frame.timestamp_ns = 1000000000 + 100000000LL * k_;
+    f.index = static_cast<std::size_t>(k_);
+    f.sensor_label = labels_[static_cast<std::size_t>(k_) % labels_.size()];
+    k_++;
+    return true;
+  }
+  void rewind() override { k_ = 0; }
+  std::string describe() const override { return "fake"; }
+
+ private:
+  int n_, k_ = 0;
+  std::vector<std::string> labels_;
+};
+
+std::string write(const std::string& name, const std::string& text) {
+  const std::string p = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(p) << text;
+  return p;
+}
+
+void expectThrowWith(const std::function<void()>& f, const std::string& what) {
+  try {
+    f();
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(SequenceRunner, OneDetectorPerSensorLabelAndTheOneSensorRule) {
+  FakeFrames src(4, {"A", "B"});
+  dm::SequenceRunner runner(src, {});
+  std::vector<std::string> seen;
+  EXPECT_EQ(runner.run([&](const dm::FrameResult& r) {
+    ASSERT_NE(r.detection, nullptr);
+    EXPECT_EQ(r.truth, nullptr);
+    seen.push_back(r.frame.sensor_label);
+  }),
+            4u);
+  EXPECT_EQ(seen, (std::vector<std::string>{"A", "B", "A", "B"}));
+  EXPECT_EQ(runner.detectors().sensors(), 2u);
+
+  FakeFrames two(4, {"A", "B"});
+  dm::SequenceOptions one;
+  one.single_sensor = true;
+  expectThrowWith([&] { dm::SequenceRunner(two, one).run([](const dm::FrameResult&) {}); },
+                  "fake holds several LiDARs ('A', 'B'): choose one with --sensor-label");
+  FakeFrames none(0, {"A"});
+  expectThrowWith([&] { dm::SequenceRunner(none, {}).run([](const dm::FrameResult&) {}); },
+                  "no LiDAR observation in fake");
+}
+
+TEST(SequenceRunner, PosesGiveEachSensorTheMotionSinceItsOwnPreviousFrame) {
+  const std::string tum = write("dynobj_runner.tum",
+                                "1.0 0 0 0 0 0 0 1\n1.1 1 0 0 0 0 0 1\n"
+                                "1.2 3 0 0 0 0 0 1\n1.3 6 0 0 0 0 0 1\n");
+  FakeFrames src(4, {"A", "B"});
+  dm::SequenceOptions o;
+  o.poses = tum;
+  std::vector<std::optional<double>> dx;
+  dm::SequenceRunner(src, o).run([&](const dm::FrameResult& r) {
+    ASSERT_NE(r.pose, nullptr);
+    dx.push_back(r.motion ? std::optional<double>(r.motion->translation().x()) : std::nullopt);
+  });
+  ASSERT_EQ(dx.size(), 4u);
+  EXPECT_FALSE(dx[0]);
+  EXPECT_FALSE(dx[1]);
+  EXPECT_DOUBLE_EQ(*dx[2], 3.0);  // A: pose at 1.2 s seen from its pose at 1.0 s
+  EXPECT_DOUBLE_EQ(*dx[3], 5.0);  // B: 1.3 s from 1.1 s
+
+  FakeFrames more(5, {"A"});  // no pose at 1.4 s
+  expectThrowWith([&] { dm::SequenceRunner(more, o).run([](const dm::FrameResult&) {}); },
+                  "has no pose at 1400000000 ns (frame 4)");
+}
+
+TEST(SequenceRunner, GroundTruthIsMatchedByTimestamp) {
+  const std::string gt = write("dynobj_runner.labels",
+                               "# dynobj-labels v1 rows=8 cols=32\n1000000000 1 130\n"
+                               "1100000000 0\n");
+  FakeFrames src(2, {"A"});
+  dm::SequenceOptions o;
+  o.ground_truth = gt;
+  std::size_t dynamic = 0;
+  dm::SequenceRunner(src, o).run([&](const dm::FrameResult& r) {
+    ASSERT_NE(r.truth, nullptr);
+    EXPECT_EQ(r.truth_index, r.frame.index);
+    dynamic += static_cast<std::size_t>(cv::countNonZero(r.truthMask()));
+  });
+  EXPECT_EQ(dynamic, 1u);
+  FakeFrames longer(3, {"A"});
+  expectThrowWith(
+      [&] { dm::SequenceRunner(longer, o).run([](const dm::FrameResult&) {}); },
+      "ground truth has no sweep at 1200000000 ns (frame 2): the timestamps do not match");
+  const std::string small =
+      write("dynobj_runner_small.labels", "# dynobj-labels v1 rows=4 cols=32\n1000000000 0\n");
+  FakeFrames again(1, {"A"});
+  o.ground_truth = small;
+  expectThrowWith([&] { dm::SequenceRunner(again, o).run([](const dm::FrameResult&) {}); },
+                  "ground truth is 4x32 but the scans are 8x32");
+}
