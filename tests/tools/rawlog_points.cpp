@@ -13,6 +13,8 @@
 //   rawlog_points marked <in> <out> <labels>
 //       mark mode: geometry byte-identical, the pixelLabels bit "dynamic" set on exactly the
 //       labelled pixels of each sweep.
+//   rawlog_points same-removal <in_a> <out_a> <in_b> <out_b>
+//       two recordings of the same sweeps filtered alike: each scan lost the same points in both.
 //   rawlog_points same <a> <b>
 //       restore: every range image identical, no "dynamic" layer left, the same number of points
 //       and each pixel's point within 1 mm of the original's (restored points are re-created on
@@ -225,6 +227,38 @@ int partition(const std::string& in, const std::string& out, const Labels& label
   return 0;
 }
 
+/// The points each scan lost from `in` to `out`, sorted.
+std::vector<std::vector<P3>> removedPoints(const std::string& in, const std::string& out) {
+  const auto a = readScans(in), b = readScans(out);
+  pairUp(a, b);
+  std::vector<std::vector<P3>> gone(a.size());
+  for (std::size_t i = 0; i < a.size(); i++) {
+    std::vector<P3> pa = pointsOf(*a[i].obs), pb = pointsOf(*b[i].obs);
+    std::sort(pa.begin(), pa.end());
+    std::sort(pb.begin(), pb.end());
+    std::set_difference(pa.begin(), pa.end(), pb.begin(), pb.end(), std::back_inserter(gone[i]));
+  }
+  return gone;
+}
+
+/// Two recordings of the same sweeps (e.g. organized scans and unordered clouds of one simulation)
+/// filtered alike: every scan lost exactly the same points in both.
+int sameRemoval(const std::string& in_a, const std::string& out_a, const std::string& in_b,
+                const std::string& out_b) {
+  const auto ga = removedPoints(in_a, out_a), gb = removedPoints(in_b, out_b);
+  if (ga.size() != gb.size())
+    throw Failure(std::to_string(ga.size()) + " vs " + std::to_string(gb.size()) + " scans");
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < ga.size(); i++) {
+    if (ga[i] != gb[i])
+      throw Failure("scan " + std::to_string(i) + ": " + std::to_string(ga[i].size()) + " vs " +
+                    std::to_string(gb[i].size()) + " points removed, not the same points");
+    n += ga[i].size();
+  }
+  std::printf("same removal: %zu scans, the same %zu points removed in both\n", ga.size(), n);
+  return 0;
+}
+
 int marked(const std::string& in, const std::string& out, const Labels& labels) {
   const auto a = readScans(in), b = readScans(out);
   pairUp(a, b);
@@ -314,7 +348,8 @@ int main(int argc, char** argv) {
       return marked(argv[2], argv[3], labels);
     }
     if (what == "same" && argc == 4) return same(argv[2], argv[3]);
-    std::fprintf(stderr, "usage: rawlog_points partition|marked|same <a> <b> [labels [label]]\n");
+    if (what == "same-removal" && argc == 6) return sameRemoval(argv[2], argv[3], argv[4], argv[5]);
+    std::fprintf(stderr, "usage: rawlog_points partition|marked|same|same-removal <a> <b> [...]\n");
     return 2;
   } catch (const std::exception& e) {
     std::printf("rawlog_points %s: FAILED: %s\n", what.c_str(), e.what());
