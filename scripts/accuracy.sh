@@ -1,31 +1,200 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Regenerates every accuracy figure of docs/accuracy.md: simulates each shipped scenario (300
-# sweeps, fixed seeds), runs this detector (own intensity ego-motion, ground-truth ego-motion,
-# drifting odometry) and MRPT's CPointCloudFilterByDistance, and writes one report per scenario
-# plus out/accuracy/accuracy.md (all tables). Usage: scripts/accuracy.sh [scenario ...]
-# scripts/accuracy.sh --matrix [options] runs the evaluation matrix instead (every scenario x
-# seeds x every sensor preset x motion distortion): scripts/accuracy-matrix.sh --help.
+# Regenerates the accuracy tables of docs/accuracy.md. Each section writes one Markdown file in
+# out/accuracy/ (override: DYNOBJ_ACCURACY_OUT) headed by the commands that made it:
+#   scripts/accuracy.sh [scenario ...]  Table I: simulates each shipped scenario (300 sweeps, its own
+#                                       seed), runs this detector (own intensity ego-motion,
+#                                       ground-truth ego-motion, drifting odometry) and MRPT's
+#                                       CPointCloudFilterByDistance: accuracy.md + one report each
+#   scripts/accuracy.sh --ablations     "What each part contributes": hall, one key changed at a time
+#   scripts/accuracy.sh --seeds         "Sensitivity to the RANSAC seed": [ego_motion] seed 1-3
+#   scripts/accuracy.sh --os0-128       hall at 128 x 2048, defaults vs the OS0-128 preset INI
+#   scripts/accuracy.sh --quick-matrix  "Quick matrix": seeds the defaults were never tuned on
+#   scripts/accuracy.sh --mapclean      the map-cleaning tables (scripts/mapclean-accuracy.sh)
+#   scripts/accuracy.sh --all           every section above
+#   scripts/accuracy.sh --matrix [...]  the full evaluation matrix (scripts/accuracy-matrix.sh --help)
+# Hand-made, not regenerated here: the real-data MapConsistency rows "before session 4" (a
+# development driver over an older detector) and the "before" columns of the session-4 tables.
 set -euo pipefail
+HERE="$(dirname "${BASH_SOURCE[0]}")"
 if [ "${1:-}" = "--matrix" ]; then
   shift
-  exec "$(dirname "${BASH_SOURCE[0]}")/accuracy-matrix.sh" "$@"
+  exec "$HERE/accuracy-matrix.sh" "$@"
 fi
-source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+source "$HERE/common.sh"
 
-ensure_packages
+ensure_packages jq
 BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
-build_project "$BUILD_DIR"
+[ "${DYNOBJ_SKIP_BUILD:-0}" = 1 ] || build_project "$BUILD_DIR"  # DYNOBJ_SKIP_BUILD=1: use it as built
+BIN="$BUILD_DIR/apps"
 OUT="${DYNOBJ_ACCURACY_OUT:-$DYNOBJ_ROOT/out/accuracy}"
+SCEN="$DYNOBJ_ROOT/share/dynobj/scenarios"
+CONFIG="$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini"
 mkdir -p "$OUT"
-SCENARIOS=("$@")
-[ ${#SCENARIOS[@]} -gt 0 ] || SCENARIOS=(hall corridor crossing street static)
-SUMMARY="$OUT/accuracy.md"
-: > "$SUMMARY.partial"
-for s in "${SCENARIOS[@]}"; do
-  log "scenario ${s}"
-  "$BUILD_DIR/apps/dynobj-eval" --run "$DYNOBJ_ROOT/share/dynobj/scenarios/${s}.yaml" -o "$OUT/${s}" -q
-  { echo "### ${s}"; echo; cat "$OUT/${s}/summary.md"; echo; } >> "$SUMMARY.partial"
-done
-mv "$SUMMARY.partial" "$SUMMARY"
-log "done: ${SUMMARY} (tables) and ${OUT}/<scenario>/report.html"
+
+# simulate <scenario> <dir> [dynobj-sim options]: a sequence in <dir> (once per call).
+simulate() {
+  local s="$1" dir="$2"
+  shift 2
+  rm -rf "$dir"
+  "$BIN/dynobj-sim" -s "$SCEN/$s.yaml" -o "$dir" -q "$@" > /dev/null
+}
+# evaluate <sequence dir> <out dir> [dynobj-eval options]: this detector, own ego-motion; prints
+# "precision recall IoU F1" of the run.
+evaluate() {
+  local seq="$1" dir="$2"
+  shift 2
+  "$BIN/dynobj-eval" --run "$seq" -o "$dir" --modes intensity --overlays 0 -q "$@" > /dev/null
+  jq -r '.runs[0] | [.precision, .recall, .iou, .f1] | map(if . == null then "n/a"
+         else (. * 1000 | round / 1000 | tostring) end) | join(" ")' "$dir/summary.json"
+}
+# fmt3 "0.9" -> "0.900"
+fmt3() { local v; for v in "$@"; do [ "$v" = n/a ] && printf 'n/a ' || printf '%.3f ' "$v"; done; }
+
+table1() {
+  local scenarios=("$@") summary="$OUT/accuracy.md"
+  [ ${#scenarios[@]} -gt 0 ] || scenarios=(hall corridor crossing street static)
+  {
+    echo "<!-- made by: scripts/accuracy.sh ${scenarios[*]} -->"
+    echo "Per scenario: \`dynobj-eval --run share/dynobj/scenarios/<s>.yaml -o $OUT/<s> -q\`"
+    echo
+  } > "$summary.partial"
+  for s in "${scenarios[@]}"; do
+    log "Table I: scenario ${s}"
+    "$BIN/dynobj-eval" --run "$SCEN/${s}.yaml" -o "$OUT/${s}" -q
+    { echo "#### ${s}"; echo; cat "$OUT/${s}/summary.md"; echo; } >> "$summary.partial"
+  done
+  mv "$summary.partial" "$summary"
+  log "Table I: ${summary} (and ${OUT}/<scenario>/report.html)"
+}
+
+# One row per variant: "label|INI text" (printf escapes), evaluated on hall (300 sweeps).
+ABLATIONS=(
+  "defaults|"
+  "paper's one-sided foreground \`B(f − h, θ)\` (\`absolute = false\`)|[foreground]\nabsolute = false\n"
+  "no free-space check (\`[free_space] enabled = false\`; rigid movers can then never prove their motion)|[free_space]\nenabled = false\n"
+  "no hysteresis|[tracking]\nhysteresis = false\n"
+  "no Kalman prediction (the paper's Eq. 8 only, no coasting)|[tracking]\nprediction = false\n"
+  "Eq. (23) as the paper: every cluster, no rigid-mover exemption (\`rigid_tolerance = 0\`)|[movement]\nrigid_tolerance = 0\n"
+  "Eq. (23) on elongated clusters only (√(λ1/λ2) ≥ 1.5, ≥ 0.5 m), no exemption — the previous default|[movement]\nlong_object_elongation = 1.5\nlong_object_length = 0.5\nrigid_tolerance = 0\n"
+  "no cluster size/length limits|[clustering]\nmax_area = 0\nmax_length = 0\n"
+  "ORB ×2 upsampling, 3 levels, 1500 features|[ego_motion]\nupsample = 2\nlevels = 3\nfeatures = 1500\n"
+  "range-image window clustering (\`search = image\`) instead of the grid|[clustering]\nsearch = image\n"
+  "every feature in the search (no 17 cm voxel reduction)|[clustering]\nvoxel = 0\n"
+  "faster ego-motion: 400 ORB features, FAST threshold 20|[ego_motion]\nfeatures = 400\nfast_threshold = 20\n"
+  "RANSAC: 200 fixed samples, no refits (the previous default)|[ego_motion]\nconfidence = 1\nrefinements = 0\n"
+)
+ablations() {
+  local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini
+  mkdir -p "$dir"
+  log "ablations: simulating hall (300 sweeps)"
+  simulate hall "$dir/sim"
+  {
+    echo "<!-- made by: scripts/accuracy.sh --ablations -->"
+    echo "Per variant: \`dynobj-sim -s share/dynobj/scenarios/hall.yaml -o sim\`, then"
+    echo "\`dynobj-eval --run sim -o <variant> --modes intensity -c <dynobj.ini + the changed keys>\`"
+    echo
+    echo "| variant | precision | recall | IoU | F1 |"
+    echo "|---|---|---|---|---|"
+  } > "$md.partial"
+  for v in "${ABLATIONS[@]}"; do
+    label="${v%%|*}"
+    ini="${v#*|}"
+    i=$((i + 1))
+    { cat "$CONFIG"; printf '\n%b' "$ini"; } > "$dir/variant-$i.ini"
+    log "ablations: ${label}"
+    read -r p r iou f1 < <(evaluate "$dir/sim" "$dir/variant-$i" -c "$dir/variant-$i.ini")
+    echo "| ${label} | $(fmt3 "$p" "$r" "$iou" "$f1" | xargs | sed 's/ / | /g') |" >> "$md.partial"
+  done
+  mv "$md.partial" "$md"
+  log "ablations: ${md}"
+}
+
+seeds() {
+  local dir="$OUT/seeds" md="$OUT/seeds.md" s seed
+  mkdir -p "$dir"
+  {
+    echo "<!-- made by: scripts/accuracy.sh --seeds -->"
+    echo "Per scenario: \`dynobj-sim -s share/dynobj/scenarios/<s>.yaml -o sim\`, then per RANSAC seed"
+    echo "\`dynobj-eval --run sim --modes intensity -c <dynobj.ini with [ego_motion] seed = S>\`"
+    echo
+    echo "| scenario | F1 / IoU, seed 1 | seed 2 | seed 3 |"
+    echo "|---|---|---|---|"
+  } > "$md.partial"
+  for s in hall street crossing; do
+    log "seeds: simulating ${s} (300 sweeps)"
+    simulate "$s" "$dir/$s"
+    local row="| ${s} |"
+    for seed in 1 2 3; do
+      { cat "$CONFIG"; printf '\n[ego_motion]\nseed = %s\n' "$seed"; } > "$dir/seed-$seed.ini"
+      read -r p r iou f1 < <(evaluate "$dir/$s" "$dir/$s-seed$seed" -c "$dir/seed-$seed.ini")
+      row="$row $(fmt3 "$f1" | xargs) / $(fmt3 "$iou" | xargs) |"
+    done
+    echo "$row" >> "$md.partial"
+  done
+  mv "$md.partial" "$md"
+  log "seeds: ${md}"
+}
+
+os0_128() {
+  local dir="$OUT/os0-128" md="$OUT/os0-128.md"
+  mkdir -p "$dir"
+  log "os0-128: simulating hall at 128 x 2048 and 64 x 1024 (100 sweeps)"
+  simulate hall "$dir/hall-128" --frames 100 --set sensor=sensors/os0-128-2048.ini
+  simulate hall "$dir/hall-64" --frames 100
+  {
+    echo "<!-- made by: scripts/accuracy.sh --os0-128 -->"
+    echo "\`dynobj-sim -s share/dynobj/scenarios/hall.yaml --frames 100 [--set sensor=sensors/os0-128-2048.ini] -o sim\`,"
+    echo "then \`dynobj-eval --run sim --modes intensity -c <config>\`"
+    echo
+    echo "| sensor | configuration | precision | recall | IoU | F1 |"
+    echo "|---|---|---|---|---|---|"
+    read -r p r iou f1 < <(evaluate "$dir/hall-128" "$dir/defaults" -c "$CONFIG")
+    echo "| OS0-128, 128 × 2048 | defaults (\`dynobj.ini\`, tuned for 64 × 1024) | $(fmt3 "$p" "$r" "$iou" "$f1" | xargs | sed 's/ / | /g') |"
+    read -r p r iou f1 < <(evaluate "$dir/hall-128" "$dir/preset" -c "$DYNOBJ_ROOT/share/dynobj/config/dynobj-os0-128-2048.ini")
+    echo "| OS0-128, 128 × 2048 | \`dynobj-os0-128-2048.ini\` | $(fmt3 "$p" "$r" "$iou" "$f1" | xargs | sed 's/ / | /g') |"
+    read -r p r iou f1 < <(evaluate "$dir/hall-64" "$dir/os0-64" -c "$CONFIG")
+    echo "| OS0-64, 64 × 1024 (for comparison) | defaults | $(fmt3 "$p" "$r" "$iou" "$f1" | xargs | sed 's/ / | /g') |"
+  } > "$md.partial"
+  mv "$md.partial" "$md"
+  log "os0-128: ${md}"
+}
+
+# "Quick matrix": 100 sweeps per cell, seeds the defaults were never tuned on, a few presets.
+QUICK=("hall 101" "hall 102" "corridor 101" "corridor 102" "crossing 101" "crossing 102"
+       "street 101" "street 102" "hall 1 vlp-16" "hall 1 os0-128" "crossing 3 vlp-16"
+       "crossing 3 hdl-32" "street 4 hdl-64" "street 4 vlp-16")
+quick_matrix() {
+  local dir="$OUT/quick-matrix" md="$OUT/quick-matrix.md" cell s seed sensor sets
+  mkdir -p "$dir"
+  {
+    echo "<!-- made by: scripts/accuracy.sh --quick-matrix -->"
+    echo "Per cell: \`dynobj-sim -s share/dynobj/scenarios/<s>.yaml --seed <S> -n 100 [--set sensor=sensors/<preset>.ini] -o sim\`,"
+    echo "then \`dynobj-eval --run sim --modes intensity -c share/dynobj/config/dynobj.ini\`"
+    echo
+    echo "| cell | precision | recall | IoU | F1 |"
+    echo "|---|---|---|---|---|"
+  } > "$md.partial"
+  for cell in "${QUICK[@]}"; do
+    read -r s seed sensor <<< "$cell"
+    sets=()
+    [ -n "${sensor:-}" ] && sets=(--set "sensor=sensors/$sensor.ini")
+    log "quick matrix: ${cell}"
+    simulate "$s" "$dir/sim" --frames 100 --seed "$seed" "${sets[@]}"
+    read -r p r iou f1 < <(evaluate "$dir/sim" "$dir/eval" -c "$CONFIG")
+    echo "| ${s}, seed ${seed}${sensor:+, ${sensor}} | $(fmt3 "$p" "$r" "$iou" "$f1" | xargs | sed 's/ / | /g') |" >> "$md.partial"
+  done
+  mv "$md.partial" "$md"
+  log "quick matrix: ${md}"
+}
+
+case "${1:-}" in
+  --ablations) ablations ;;
+  --seeds) seeds ;;
+  --os0-128) os0_128 ;;
+  --quick-matrix) quick_matrix ;;
+  --mapclean) exec "$HERE/mapclean-accuracy.sh" ;;
+  --all) table1; ablations; seeds; os0_128; quick_matrix; "$HERE/mapclean-accuracy.sh" ;;
+  -*) echo "unknown option $1 (see the head of $0)" >&2; exit 2 ;;
+  *) table1 "$@" ;;
+esac

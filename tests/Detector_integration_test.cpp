@@ -28,8 +28,11 @@ struct RunResult {
   int ego_ok = 0, frames = 0;
 };
 
-/// Runs the detector over the committed sample; `external`: use ground-truth poses.
-RunResult runSample(bool external) {
+enum class Motion { Own, GroundTruth, StandingStill };
+
+/// Runs the detector over the committed sample with its own ego-motion, or given the ground-truth
+/// motion, or given a wrong one (identity: the robot stood still, while it really moves).
+RunResult runSample(Motion motion) {
   RunResult out;
   const auto truth = io::LabelFile::read(kSample + ".gt.labels");
   const auto poses = io::readPoseFile(kSample + ".gt.tum", io::PoseFormat::Tum);
@@ -42,9 +45,11 @@ RunResult runSample(bool external) {
     const auto& f = item.frame;
     const auto* pose = io::findPose(poses, f.timestamp_ns);
     EXPECT_NE(pose, nullptr);
-    std::optional<Eigen::Isometry3d> true_motion;
+    std::optional<Eigen::Isometry3d> true_motion, given;
     if (prev) true_motion = prev->pose.inverse() * pose->pose;
-    const auto& r = det.process(f, external ? true_motion : std::nullopt);
+    if (prev && motion == Motion::GroundTruth) given = true_motion;
+    if (prev && motion == Motion::StandingStill) given = Eigen::Isometry3d::Identity();
+    const auto& r = det.process(f, given);
     if (true_motion && r.ego_motion.ok) {
       out.ego_ok++;
       out.motion_errors.push_back(
@@ -57,6 +62,9 @@ RunResult runSample(bool external) {
     prev = pose;
     out.frames++;
   }
+  std::printf("sample: precision %.4f, recall %.4f, %d of %d frames with ego-motion\n",
+              out.confusion.precision().value_or(-1), out.confusion.recall().value_or(-1),
+              out.ego_ok, out.frames);
   return out;
 }
 
@@ -67,22 +75,28 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+// Bounds within 10 % (relative) of the measured figures; a detector change that moves them must
+// re-measure (and say so in its commit), not loosen them silently.
 TEST(Detector, HallSampleWithIntensityEgoMotion) {
-  const RunResult r = runSample(false);
+  const RunResult r = runSample(Motion::Own);
   ASSERT_EQ(r.frames, 40);
-  // Measured: precision 0.97, recall 0.59 (the first ~7 frames cannot have detections: the
+  // Measured: precision 1.000, recall 0.599 (the first ~7 frames cannot have detections: the
   // sliding window and the confirmation must fill first).
-  EXPECT_GE(r.confusion.precision().value_or(0), 0.9);
-  EXPECT_GE(r.confusion.recall().value_or(0), 0.45);
-  EXPECT_GE(r.ego_ok, 38);                   // every frame but the first
+  EXPECT_GE(r.confusion.precision().value_or(0), 0.95);
+  EXPECT_GE(r.confusion.recall().value_or(0), 0.56);
+  EXPECT_GE(r.ego_ok, 39);                   // every frame but the first
   EXPECT_LT(median(r.motion_errors), 0.03);  // ORB ego-motion vs ground truth, per frame
 }
 
 TEST(Detector, HallSampleWithExternalEgoMotion) {
-  const RunResult r = runSample(true);
-  EXPECT_GE(r.confusion.precision().value_or(0), 0.9);
-  EXPECT_GE(r.confusion.recall().value_or(0), 0.45);
-  EXPECT_LT(median(r.motion_errors), 1e-9);  // "ok" and exactly the given motion
+  // Measured with the ground-truth motion: precision 1.000, recall 0.607.
+  const RunResult r = runSample(Motion::GroundTruth);
+  EXPECT_GE(r.confusion.precision().value_or(0), 0.95);
+  EXPECT_GE(r.confusion.recall().value_or(0), 0.57);
+  // The external motion is really used: told that the robot stood still (it walks at ~1 m/s), the
+  // detector takes the static scene for moving (measured: precision 0.019).
+  const RunResult still = runSample(Motion::StandingStill);
+  EXPECT_LT(still.confusion.precision().value_or(0), 0.1);
 }
 
 TEST(Detector, StaticSceneFlagsAlmostNothing) {
@@ -97,7 +111,11 @@ TEST(Detector, StaticSceneFlagsAlmostNothing) {
     flagged += static_cast<std::size_t>(cv::countNonZero(r.dynamic));
     points += sweep.frame.validCount();
   }
-  EXPECT_LT(static_cast<double>(flagged) / static_cast<double>(points), 0.005);
+  // Measured: 0 of 993,885 points flagged; the bound is 1e-5 (~10 points; the 300-sweep `static`
+  // of docs/accuracy.md flags 0.002 %).
+  const double share = static_cast<double>(flagged) / static_cast<double>(points);
+  std::printf("static: %zu of %zu points flagged (%.6f)\n", flagged, points, share);
+  EXPECT_LE(share, 1e-5);
 }
 
 TEST(Detector, ResetForgetsEverything) {

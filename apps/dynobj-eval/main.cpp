@@ -90,6 +90,7 @@ int run(int argc, char** argv) {
   if (frames.getValue() > 0) opts.max_frames = static_cast<std::size_t>(frames.getValue());
   const eval::SequenceFiles seq = eval::SequenceFiles::prepare(run_in.getValue(), out.getValue(),
                                                                apps::shareDir(), frames.getValue());
+  if (!seq.note.empty()) std::cerr << "[dynobj-eval] " << seq.note << "\n";
   const auto mode_list = eval::RunOptions::parseModes(modes.getValue(), !seq.poses.empty());
   const std::size_t n_sweeps =
       std::min(opts.max_frames, io::LabelFile::read(seq.labels).sweeps.size());

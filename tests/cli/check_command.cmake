@@ -3,6 +3,16 @@
 #   cmake -DCMD="prog;arg;..." [-DPREPARE="sh;-c;..."] [-DEXPECT_RC=0] [-DEXPECT_OUT=regex]
 #         [-DEXPECT_ERR=regex] [-DEXPECT_FILES="a;b"] [-DEXPECT_NO_FILES="c"]
 #         [-DEXPECT_SAME="a=b;c=d"] -P check_command.cmake
+# Every file the test expects the run to write (EXPECT_FILES, and the left-hand side of each
+# EXPECT_SAME pair: output=reference) is removed first, so a leftover of an earlier run cannot pass.
+foreach(f IN LISTS EXPECT_FILES)
+  file(REMOVE "${f}")
+endforeach()
+foreach(pair IN LISTS EXPECT_SAME)
+  string(REPLACE "=" ";" ab "${pair}")
+  list(GET ab 0 a)
+  file(REMOVE "${a}")
+endforeach()
 if(PREPARE)
   execute_process(COMMAND ${PREPARE} RESULT_VARIABLE prc)
   if(NOT prc EQUAL 0)

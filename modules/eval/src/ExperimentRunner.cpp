@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/ExperimentRunner.h"
 
+#include <dynobj/io/AtomicFile.h>
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/mrptio/PoseConversion.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
@@ -13,12 +14,41 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 
 #include "dynobj/eval/Overlay.h"
 
 namespace dynobj::eval {
 namespace {
+
+/// 64-bit FNV-1a of a byte string, in hex.
+std::string fnv1a(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
+  std::ostringstream o;
+  o << std::hex << h;
+  return o.str();
+}
+
+/// What the simulator makes of a scenario, in a few bytes: a hash of one sweep's ranges,
+/// intensities, ground truth and pose (any change to the sensor, noise, intensity or scene models
+/// shows here).
+std::string sweepFingerprint(const sim::SimulatedSweep& s) {
+  std::string b;
+  const auto add = [&](const cv::Mat& m) {
+    const cv::Mat c = m.isContinuous() ? m : m.clone();
+    b.append(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize());
+  };
+  add(s.frame.range);
+  add(s.frame.intensity);
+  add(s.dynamic);
+  b.append(reinterpret_cast<const char*>(s.sensor_pose.matrix().data()), 16 * sizeof(double));
+  b.append(std::to_string(s.timestamp_ns));
+  return fnv1a(b);
+}
 
 namespace fs = std::filesystem;
 
@@ -94,12 +124,42 @@ SequenceFiles SequenceFiles::prepare(const std::string& input, const std::string
   const sim::LidarSimulator simulator(sim::Scenario::fromYamlFile(input, share_dir, overrides));
   const sim::Scenario& sc = simulator.scenario();
   const std::string dir = out_dir + "/" + sc.name;
-  if (!fs::exists(dir + "/" + sc.name + ".rawlog")) {
-    sim::SequenceWriter writer(dir, sc);
-    for (int k = 0; k < sc.frames; k++) writer.write(simulator.simulate(k));
-    writer.close();
+  // The stamp beside the rawlog says what it was simulated from: the scenario's text, the
+  // overrides (frames), the seed and count as read, and the simulator's fingerprint (a hash of its
+  // first sweep). A sequence is reused only when its stamp matches; otherwise it is simulated again.
+  const std::string stamp_path = dir + "/" + sc.name + ".sim-stamp";
+  std::ostringstream what;
+  {
+    std::ifstream yaml(input, std::ios::binary);
+    what << "scenario " << fnv1a(std::string(std::istreambuf_iterator<char>(yaml), {})) << "\n";
   }
-  return locate(dir);
+  what << "frames " << sc.frames << "\nseed " << sc.seed << "\n";
+  for (const auto& [k, v] : overrides) what << "set " << k << "=" << v << "\n";
+  what << "simulator " << sweepFingerprint(simulator.simulate(0)) << "\n";
+  const std::string stamp = what.str();
+  std::string old;
+  if (std::ifstream f(stamp_path, std::ios::binary); f)
+    old.assign(std::istreambuf_iterator<char>(f), {});
+  const bool have = fs::exists(dir + "/" + sc.name + ".rawlog");
+  SequenceFiles seq;
+  if (have && old == stamp) {
+    seq = locate(dir);
+    seq.note = "reusing the sequence simulated earlier in " + dir + " (its " + sc.name +
+               ".sim-stamp matches the scenario, seed, frames and simulator)";
+    return seq;
+  }
+  sim::SequenceWriter writer(dir, sc);
+  for (int k = 0; k < sc.frames; k++) writer.write(simulator.simulate(k));
+  writer.close();
+  io::AtomicFile f(stamp_path);
+  f.stream() << stamp;
+  f.commit();
+  seq = locate(dir);
+  seq.note = have ? "simulated " + dir + " again: " +
+                        (old.empty() ? std::string("it had no .sim-stamp")
+                                     : "the scenario, seed, frames or simulator changed")
+                  : "simulated " + dir;
+  return seq;
 }
 
 RunResult runExperiment(const SequenceFiles& seq, const RunOptions& opts) {

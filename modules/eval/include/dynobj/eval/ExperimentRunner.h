@@ -23,13 +23,17 @@ namespace dynobj::eval {
 /// The files of a labelled sequence <dir>/<name>.* (as dynobj-sim writes them).
 struct SequenceFiles {
   std::string name, rawlog, labels, instances, objects, poses;
+  /// prepare() from a scenario: whether it simulated the sequence or reused one (for the user).
+  std::string note;
 
   /// `path`: a sequence folder (holding exactly one *.rawlog) or the .rawlog itself. The rawlog
   /// and <name>.gt.labels must exist; the others are optional ("" when absent).
   static SequenceFiles locate(const std::string& path);
 
-  /// `input` a scenario (.yaml): simulated into <out_dir>/<name>/ unless its rawlog is already
-  /// there (`frames` > 0 overrides the scenario's count); anything else: locate(input).
+  /// `input` a scenario (.yaml): simulated into <out_dir>/<name>/ (`frames` > 0 overrides the
+  /// scenario's count), reused only when <name>.sim-stamp there matches the scenario's text, seed,
+  /// frames and the simulator's fingerprint (its first sweep), else simulated again; anything
+  /// else: locate(input).
   static SequenceFiles prepare(const std::string& input, const std::string& out_dir,
                                const std::string& share_dir, int frames = 0);
 };
