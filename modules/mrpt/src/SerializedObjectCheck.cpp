@@ -135,19 +135,58 @@ class Cursor {
 
 bool walkObject(Cursor& c);
 
-/// A nested object of an expected class; false when it is not the one expected (MRPT then
-/// reports it) or its version is one the walk does not know.
-bool walkNested(Cursor& c, const char* expected) {
+/// MRPT's class lookup (mrpt::rtti::findRegisteredClass) falls back to the name without its
+/// namespace, so "garbage::CPose3D" is read as a CPose3D: the walk resolves names the same way.
+std::string shortName(const std::string& cls) {
+  const auto p = cls.rfind("::");
+  return p == std::string::npos ? cls : cls.substr(p + 2);
+}
+
+/// Reads an object header; returns false for the legacy header, an over-long name or "nullptr"
+/// (MRPT's own checks apply); sets the class's short name and version.
+bool readHeader(Cursor& c, std::string& cls, std::uint8_t& version) {
+  const std::uint8_t head = c.u8();
+  if (!(head & 0x80)) return false;  // pre-0.5.5 header
+  const unsigned len = head & 0x7F;
+  if (len > 120) return false;  // MRPT refuses it with a message
+  const std::uint8_t* name = c.take(len);
+  const std::string full(reinterpret_cast<const char*>(name), len);
+  if (full == "nullptr") return false;
+  cls = shortName(full);
+  c.cls_ = full;
+  version = c.u8();
+  return true;
+}
+
+void endFlag(Cursor& c) {
+  const std::uint8_t end = c.u8();
+  if (end != kEndFlag)
+    c.damaged("the end-of-object flag is " + std::to_string(end) +
+              ", not 136 (0x88): a size or field before it is wrong");
+}
+
+bool walkBody(Cursor& c, const std::string& cls, std::uint8_t v);
+
+/// A member object of a checked object: it must be of the expected class and of a version the
+/// containing object's MRPT could have written, else the bytes are damaged (MRPT would read the
+/// rest of the object unchecked).
+void walkMember(Cursor& c, const char* expected) {
   const std::string outer = c.cls_;
-  if (!walkObject(c)) return false;
-  const bool ok = c.cls_ == expected;
+  std::string cls;
+  std::uint8_t v = 0;
+  if (!readHeader(c, cls, v) || cls != expected)
+    c.damaged(std::string("a member object that should be a ") + expected + " is not");
+  if (!walkBody(c, cls, v))
+    c.damaged("version " + std::to_string(v) + " of " + expected +
+              " cannot be inside this object");
+  endFlag(c);
   c.cls_ = outer;
-  return ok;
 }
 
 bool walkPose3D(Cursor& c, std::uint8_t v) {
-  if (v != 3) return false;
-  c.skip(12 * 8);  // x y z + 3x3 rotation
+  if (v == 2) c.skip(7 * 8);        // x y z + quaternion
+  else if (v == 3) c.skip(12 * 8);  // x y z + 3x3 rotation
+  else return false;
   return true;
 }
 
@@ -158,7 +197,7 @@ bool walkPose2D(Cursor& c, std::uint8_t v) {
 }
 
 bool walkImage(Cursor& c, std::uint8_t v) {
-  if (v != 9) return false;
+  if (v < 6 || v > 9) return false;
   if (c.flag("CImage external-storage flag")) {
     c.string("CImage external file name");
     return true;
@@ -168,13 +207,13 @@ bool walkImage(Cursor& c, std::uint8_t v) {
     const std::int32_t w = c.i32(), h = c.i32();
     c.i32();  // origin
     const std::int32_t bytes = c.i32();
-    c.i32();  // depth
+    if (v >= 9) c.i32();  // depth
     if (w < 0 || h < 0 || bytes < 0 ||
         static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > limit ||
         static_cast<std::uint64_t>(bytes) > limit)
       c.damaged("a grey CImage declares " + std::to_string(w) + " x " + std::to_string(h) +
                 " pixels in " + std::to_string(bytes) + " bytes");
-    if (c.flag("CImage zip flag")) return false;  // MRPT refuses it with a message
+    if (c.flag("CImage zip flag")) c.damaged("a zip-compressed CImage (MRPT cannot read it)");
     c.skip(static_cast<std::uint64_t>(bytes));
     return true;
   }
@@ -200,17 +239,17 @@ bool walkImage(Cursor& c, std::uint8_t v) {
 }
 
 bool walkCamera(Cursor& c, std::uint8_t v) {
-  if (v < 5 || v > 6) return false;
+  if (v < 4 || v > 6) return false;
   c.skip(13 * 8);  // focal length, 8 distortion coefficients, fx fy cx cy
   c.skip(2 * 4);   // nrows ncols
-  c.string("TCamera name");
+  if (v >= 5) c.string("TCamera name");
   if (v >= 6) c.u8();  // distortion model
   return true;
 }
 
 bool walkOdometry(Cursor& c, std::uint8_t v) {
   if (v != 2) return false;
-  if (!walkNested(c, "mrpt::poses::CPose2D")) return false;
+  walkMember(c, "CPose2D");
   c.string("sensor label");
   c.skip(8);  // timestamp
   if (c.flag("encoders flag")) c.skip(2 * 4);
@@ -241,7 +280,7 @@ bool walkPixelLabels(Cursor& c) {
 bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
   if (v < 9 || v > 10) return false;
   c.skip(4);  // maxRange
-  if (!walkNested(c, "mrpt::poses::CPose3D")) return false;
+  walkMember(c, "CPose3D");
   if (c.flag("hasPoints3D")) {
     const std::uint32_t n = c.u32();
     c.matrix("points3D", n, 1, 3 * 4 + 2 * 2);  // x y z floats + two uint16 pixel indices
@@ -252,11 +291,11 @@ bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
     const std::uint32_t rows = c.u32(), cols = c.u32();
     c.matrix("the range image", rows, cols, 2);
   }
-  if (c.flag("hasIntensityImage") && !walkNested(c, "mrpt::img::CImage")) return false;
-  if (c.flag("hasConfidenceImage") && !walkNested(c, "mrpt::img::CImage")) return false;
-  if (!walkNested(c, "mrpt::img::TCamera") || !walkNested(c, "mrpt::img::TCamera") ||
-      !walkNested(c, "mrpt::poses::CPose3D"))
-    return false;
+  if (c.flag("hasIntensityImage")) walkMember(c, "CImage");
+  if (c.flag("hasConfidenceImage")) walkMember(c, "CImage");
+  walkMember(c, "TCamera");
+  walkMember(c, "TCamera");
+  walkMember(c, "CPose3D");
   c.skip(4 + 8);  // stdError, timestamp
   c.string("sensor label");
   c.flag("points3D external flag");
@@ -265,7 +304,8 @@ bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
   c.string("range image external file");
   c.flag("range_is_depth");
   c.u8();  // intensity channel
-  if (c.flag("pixel labels flag") && !walkPixelLabels(c)) return false;
+  if (c.flag("pixel labels flag") && !walkPixelLabels(c))
+    c.damaged("pixel labels of an unknown version");
   if (v >= 10) {
     const std::uint8_t layers = c.u8();
     for (unsigned i = 0; i < layers; i++) {
@@ -290,32 +330,35 @@ bool walkSensoryFrame(Cursor& c, std::uint8_t v) {
   return true;
 }
 
-/// The object at the cursor: header, body, end flag. False when the walk cannot go on (an
-/// unknown class or version, the legacy header without an end flag, a null object).
+/// The count of a CActionCollection (its actions are not walked: MRPT reads them unchecked).
+bool walkActions(Cursor& c, std::uint8_t v) {
+  if (v != 0) return false;
+  const std::uint32_t n = c.u32();
+  if (n > c.limits().max_observations)
+    c.damaged("an action collection of " + std::to_string(n) + " actions");
+  return n == 0;  // an empty collection is walked completely
+}
+
+bool walkBody(Cursor& c, const std::string& cls, std::uint8_t v) {
+  if (cls == "CObservation3DRangeScan") return walkRangeScan3D(c, v);
+  if (cls == "CActionCollection") return walkActions(c, v);
+  if (cls == "CSensoryFrame") return walkSensoryFrame(c, v);
+  if (cls == "CObservationOdometry") return walkOdometry(c, v);
+  if (cls == "CPose3D") return walkPose3D(c, v);
+  if (cls == "CPose2D") return walkPose2D(c, v);
+  if (cls == "CImage") return walkImage(c, v);
+  if (cls == "TCamera") return walkCamera(c, v);
+  return false;
+}
+
+/// A top-level object or one inside a sensory frame: header, body, end flag. False when the
+/// walk cannot go on (a class it does not know, a version it does not know, the legacy header,
+/// a null object): MRPT reads the rest unchecked.
 bool walkObject(Cursor& c) {
-  const std::uint8_t head = c.u8();
-  if (!(head & 0x80)) return false;  // pre-0.5.5 header: MRPT's own checks apply
-  const unsigned len = head & 0x7F;
-  if (len > 120) return false;  // MRPT refuses it with a message
-  const std::uint8_t* name = c.take(len);
-  const std::string cls(reinterpret_cast<const char*>(name), len);
-  if (cls == "nullptr") return false;
-  c.cls_ = cls;
-  const std::uint8_t v = c.u8();
-  bool known = false;
-  if (cls == "mrpt::obs::CObservation3DRangeScan") known = walkRangeScan3D(c, v);
-  else if (cls == "mrpt::obs::CSensoryFrame") known = walkSensoryFrame(c, v);
-  else if (cls == "mrpt::obs::CObservationOdometry") known = walkOdometry(c, v);
-  else if (cls == "mrpt::poses::CPose3D") known = walkPose3D(c, v);
-  else if (cls == "mrpt::poses::CPose2D") known = walkPose2D(c, v);
-  else if (cls == "mrpt::img::CImage") known = walkImage(c, v);
-  else if (cls == "mrpt::img::TCamera") known = walkCamera(c, v);
-  if (!known) return false;
-  c.cls_ = cls;
-  const std::uint8_t end = c.u8();
-  if (end != kEndFlag)
-    c.damaged("the end-of-object flag is " + std::to_string(end) +
-              ", not 136 (0x88): a size or field before it is wrong");
+  std::string cls;
+  std::uint8_t v = 0;
+  if (!readHeader(c, cls, v) || !walkBody(c, cls, v)) return false;
+  endFlag(c);
   return true;
 }
 

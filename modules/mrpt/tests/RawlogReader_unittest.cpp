@@ -242,3 +242,28 @@ TEST(RawlogReader, ReadsFromAMemoryStream) {
   while (reader.next(e)) n++;
   EXPECT_EQ(n, 3u);
 }
+
+TEST(RawlogReader, ClassNamesResolveAsInMrpt) {
+  // Found by fuzzing: MRPT reads "nullptroses::CPose3D" as a CPose3D (it retries a name without
+  // its namespace), so the check must walk it as one and still see the damaged size after it.
+  std::string err;
+  const auto path = writeRangeScan([](std::string& s) {
+    const auto p = s.find("mrpt::poses::CPose3D");
+    ASSERT_NE(p, std::string::npos);
+    s.replace(p, 20, "nullptroses::CPose3D");
+    replacePair(s, 3, 5, 1000000, 100000);
+  });
+  EXPECT_EQ(readUntilError(path, err), 1u);
+  EXPECT_NE(err.find("the range image declares 1000000 x 100000"), std::string::npos) << err;
+}
+
+TEST(RawlogReader, MemberOfAnotherClassIsDamage) {
+  std::string err;
+  const auto path = writeRangeScan([](std::string& s) {
+    const auto p = s.find("mrpt::img::CImage");
+    ASSERT_NE(p, std::string::npos);
+    s.replace(p, 17, "mrpt::img::XImage");
+  });
+  EXPECT_EQ(readUntilError(path, err), 1u);
+  EXPECT_NE(err.find("a member object that should be a CImage is not"), std::string::npos) << err;
+}
