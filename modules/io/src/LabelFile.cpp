@@ -47,6 +47,10 @@ LabelFile LabelFile::read(const std::string& path) {
     if (!f.sweeps.empty() && s.timestamp_ns <= f.sweeps.back().timestamp_ns)
       bad(path, line_no,
           "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
+    if (static_cast<std::uint64_t>(count) > n_pixels)  // before reserving memory for them
+      bad(path, line_no,
+          "count " + std::to_string(count) + " is more than the " + std::to_string(f.rows) + "x" +
+              std::to_string(f.cols) + " image's pixels");
     s.pixels.reserve(static_cast<std::size_t>(count));
     long long idx = 0;
     char colon = 0;
