@@ -39,11 +39,11 @@ secs=$(($(date +%s) - start))
 {
   echo "damaged rawlogs: $(cat "$OUT"/results-*.txt | wc -l) cases (of $N asked), $secs s this run, $JOBS shards"
   echo "per kind and verdict (ok = exit 0 + complete output; error = exit 1 naming the entry/byte):"
-  cut -d'|' -f1 "$OUT"/results-*.txt | awk '{print $2, $3}' | sort | uniq -c
+  cut -d'|' -f1 "$OUT"/results-*.txt | tr -cd '[:print:]\n'  | awk '{print $2, $3}' | sort | uniq -c
   echo "failures (crash, hang, other exit code, leftover .partial, unreadable output, vague message):"
-  grep -h " FAIL " "$OUT"/results-*.txt || echo "  none"
+  grep -ah " FAIL " "$OUT"/results-*.txt || echo "  none"
   echo "error messages, by kind of damage found:"
-  grep -h " error " "$OUT"/results-*.txt | sed -e 's/.*| //' -e 's/rawlog .* is \(damaged\|truncated\) at entry [0-9]* ([a-z ]*, byte [0-9]*)/rawlog is \1/' \
+  grep -ah " error " "$OUT"/results-*.txt | sed -e 's/.*| //' -e 's/rawlog .* is \(damaged\|truncated\) at entry [0-9]* ([a-z ]*, byte [0-9]*)/rawlog is \1/' \
     -e 's/[0-9][0-9]*/N/g' | cut -c1-110 | sort | uniq -c | sort -rn | head -25
 } | tee "$OUT/summary.txt"
 exit $rc

@@ -136,7 +136,8 @@ class Cursor {
 bool walkObject(Cursor& c);
 
 /// MRPT's class lookup (mrpt::rtti::findRegisteredClass) falls back to the name without its
-/// namespace, so "garbage::CPose3D" is read as a CPose3D: the walk resolves names the same way.
+/// namespace, so "garbage::CPose3D" is read as a CPose3D, and the name ends at a NUL byte: the
+/// walk resolves names the same way.
 std::string shortName(const std::string& cls) {
   const auto p = cls.rfind("::");
   return p == std::string::npos ? cls : cls.substr(p + 2);
@@ -150,10 +151,14 @@ bool readHeader(Cursor& c, std::string& cls, std::uint8_t& version) {
   const unsigned len = head & 0x7F;
   if (len > 120) return false;  // MRPT refuses it with a message
   const std::uint8_t* name = c.take(len);
-  const std::string full(reinterpret_cast<const char*>(name), len);
+  // MRPT copies the name into a C string: a NUL ends it.
+  const std::string full(reinterpret_cast<const char*>(name),
+                         std::find(name, name + len, 0) - name);
   if (full == "nullptr") return false;
   cls = shortName(full);
-  c.cls_ = full;
+  c.cls_ = full;  // for messages: damaged names may hold any byte
+  for (char& ch : c.cls_)
+    if (ch < 0x20 || ch > 0x7E) ch = '?';
   version = c.u8();
   return true;
 }
@@ -167,20 +172,33 @@ void endFlag(Cursor& c) {
 
 bool walkBody(Cursor& c, const std::string& cls, std::uint8_t v);
 
-/// A member object of a checked object: it must be of the expected class and of a version the
-/// containing object's MRPT could have written, else the bytes are damaged (MRPT would read the
-/// rest of the object unchecked).
-void walkMember(Cursor& c, const char* expected) {
+/// Thrown when a member of an object written by an old MRPT has a version the walk does not know:
+/// the walk stops there and MRPT reads the rest unchecked.
+struct StopWalk {};
+
+/// A member object of a checked object: it must be of the expected class and, when `strict` (the
+/// container is of a version MRPT 2.x writes), of a version the container's MRPT could have
+/// written; else the bytes are damaged (MRPT would read the rest of the object unchecked).
+void walkMember(Cursor& c, const char* expected, bool strict = true) {
   const std::string outer = c.cls_;
   std::string cls;
   std::uint8_t v = 0;
   if (!readHeader(c, cls, v) || cls != expected)
     c.damaged(std::string("a member object that should be a ") + expected + " is not");
-  if (!walkBody(c, cls, v))
+  if (!walkBody(c, cls, v)) {
+    if (!strict) throw StopWalk{};
     c.damaged("version " + std::to_string(v) + " of " + expected +
               " cannot be inside this object");
+  }
   endFlag(c);
   c.cls_ = outer;
+}
+
+bool walkMatrixF(Cursor& c, std::uint8_t v) {
+  if (v != 0) return false;
+  const std::uint32_t rows = c.u32(), cols = c.u32();
+  c.matrix("a float matrix", rows, cols, 4);
+  return true;
 }
 
 bool walkPose3D(Cursor& c, std::uint8_t v) {
@@ -278,33 +296,45 @@ bool walkPixelLabels(Cursor& c) {
 }
 
 bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
-  if (v < 9 || v > 10) return false;
+  if (v > 10) return false;
+  const bool strict = v >= 9;  // members written by MRPT 2.x; older files: stop at what is unknown
   c.skip(4);  // maxRange
-  walkMember(c, "CPose3D");
-  if (c.flag("hasPoints3D")) {
+  walkMember(c, "CPose3D", strict);
+  if (v == 0 || c.flag("hasPoints3D")) {
     const std::uint32_t n = c.u32();
-    c.matrix("points3D", n, 1, 3 * 4 + 2 * 2);  // x y z floats + two uint16 pixel indices
+    // x y z floats; v0 one validity byte per point; v8+ two uint16 pixel indices
+    c.matrix("points3D", n, 1, v == 0 ? 3 * 4 + 1 : v >= 8 ? 3 * 4 + 2 * 2 : 3 * 4);
   }
-  const bool range = c.flag("hasRangeImage");
-  c.skip(4);  // rangeUnits
-  if (range) {
-    const std::uint32_t rows = c.u32(), cols = c.u32();
-    c.matrix("the range image", rows, cols, 2);
+  if (v >= 1) {
+    const bool range = c.flag("hasRangeImage");
+    if (v >= 9) c.skip(4);  // rangeUnits
+    if (range) {
+      if (v < 9) {
+        walkMember(c, "CMatrixF", false);
+      } else {
+        const std::uint32_t rows = c.u32(), cols = c.u32();
+        c.matrix("the range image", rows, cols, 2);
+      }
+    }
+    if (c.flag("hasIntensityImage")) walkMember(c, "CImage", strict);
+    if (c.flag("hasConfidenceImage")) walkMember(c, "CImage", strict);
+    if (v >= 2) walkMember(c, "TCamera", strict);
+    if (v >= 4) {
+      walkMember(c, "TCamera", strict);
+      walkMember(c, "CPose3D", strict);
+    }
   }
-  if (c.flag("hasIntensityImage")) walkMember(c, "CImage");
-  if (c.flag("hasConfidenceImage")) walkMember(c, "CImage");
-  walkMember(c, "TCamera");
-  walkMember(c, "TCamera");
-  walkMember(c, "CPose3D");
   c.skip(4 + 8);  // stdError, timestamp
   c.string("sensor label");
-  c.flag("points3D external flag");
-  c.string("points3D external file");
-  c.flag("range image external flag");
-  c.string("range image external file");
-  c.flag("range_is_depth");
-  c.u8();  // intensity channel
-  if (c.flag("pixel labels flag") && !walkPixelLabels(c))
+  if (v >= 3) {
+    c.flag("points3D external flag");
+    c.string("points3D external file");
+    c.flag("range image external flag");
+    c.string("range image external file");
+  }
+  if (v >= 5) c.flag("range_is_depth");
+  if (v >= 6) c.u8();  // intensity channel
+  if (v >= 7 && c.flag("pixel labels flag") && !walkPixelLabels(c))
     c.damaged("pixel labels of an unknown version");
   if (v >= 10) {
     const std::uint8_t layers = c.u8();
@@ -318,7 +348,9 @@ bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
 }
 
 bool walkSensoryFrame(Cursor& c, std::uint8_t v) {
-  if (v != 2) return false;
+  if (v > 2) return false;
+  if (v < 2) c.skip(4);   // frame ID
+  if (v == 0) c.skip(8);  // timestamp
   const std::uint32_t n = c.u32();
   if (n > c.limits().max_observations)
     c.damaged("a sensory frame of " + std::to_string(n) + " observations");
@@ -348,6 +380,7 @@ bool walkBody(Cursor& c, const std::string& cls, std::uint8_t v) {
   if (cls == "CPose2D") return walkPose2D(c, v);
   if (cls == "CImage") return walkImage(c, v);
   if (cls == "TCamera") return walkCamera(c, v);
+  if (cls == "CMatrixF") return walkMatrixF(c, v);
   return false;
 }
 
@@ -357,7 +390,11 @@ bool walkBody(Cursor& c, const std::string& cls, std::uint8_t v) {
 bool walkObject(Cursor& c) {
   std::string cls;
   std::uint8_t v = 0;
-  if (!readHeader(c, cls, v) || !walkBody(c, cls, v)) return false;
+  try {
+    if (!readHeader(c, cls, v) || !walkBody(c, cls, v)) return false;
+  } catch (const StopWalk&) {
+    return false;
+  }
   endFlag(c);
   return true;
 }

@@ -66,12 +66,12 @@ struct ObjectLimits {
 };
 
 /// Walks the object that starts at `in`'s read position, without consuming it. Classes and
-/// versions it knows (CObservation3DRangeScan v9-v10 with its CPose3D / CImage / TCamera members,
-/// CSensoryFrame, CObservationOdometry, the count of a CActionCollection): every size is checked
-/// and the whole object is then in the look-ahead buffer; a member object of another class or of
-/// a version its container cannot hold is damage. Class names resolve as in MRPT (a name not
-/// registered with its namespace is looked up without it). Any other class or version: the walk
-/// stops there and MRPT reads it unchecked.
+/// versions it knows (CObservation3DRangeScan v0-v10 with its CPose3D / CImage / TCamera /
+/// CMatrixF members, CSensoryFrame v0-v2, CObservationOdometry, the count of a CActionCollection):
+/// every size is checked and the whole object is then in the look-ahead buffer; a member object
+/// of another class, or of a version a v9-v10 scan cannot hold, is damage. Class names resolve as
+/// in MRPT (up to a NUL byte; a name not registered with its namespace is looked up without it).
+/// Any other class or version: the walk stops there and MRPT reads it unchecked.
 /// Throws ObjectTruncated / ObjectDamaged (naming the class and the offset inside the object).
 /// Returns the number of bytes checked (0 at the end of the stream).
 std::size_t checkNextObject(LookaheadStream& in, const ObjectLimits& limits = {});

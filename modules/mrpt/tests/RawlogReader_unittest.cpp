@@ -6,6 +6,7 @@
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationComment.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
 
@@ -255,6 +256,16 @@ TEST(RawlogReader, ClassNamesResolveAsInMrpt) {
   });
   EXPECT_EQ(readUntilError(path, err), 1u);
   EXPECT_NE(err.find("the range image declares 1000000 x 100000"), std::string::npos) << err;
+  // ... and the name ends at a NUL byte (MRPT reads it into a C string).
+  err.clear();
+  const auto nul = writeRangeScan([](std::string& s) {
+    const auto p = s.find("mrpt::poses::CPose3D");
+    ASSERT_NE(p, std::string::npos);
+    s.replace(p, 20, std::string("CPose3D\0garbagegarb", 20));
+    replacePair(s, 3, 5, 1000000, 100000);
+  });
+  EXPECT_EQ(readUntilError(nul, err), 1u);
+  EXPECT_NE(err.find("the range image declares 1000000 x 100000"), std::string::npos) << err;
 }
 
 TEST(RawlogReader, MemberOfAnotherClassIsDamage) {
@@ -266,4 +277,35 @@ TEST(RawlogReader, MemberOfAnotherClassIsDamage) {
   });
   EXPECT_EQ(readUntilError(path, err), 1u);
   EXPECT_NE(err.find("a member object that should be a CImage is not"), std::string::npos) << err;
+}
+
+TEST(RawlogReader, OldSensoryFrameVersionsHaveTheirCountChecked) {
+  // Found by fuzzing: a version-1 sensory frame (MRPT still reads it) declaring 2^32-1
+  // observations made MRPT allocate them before reading any.
+  const std::string name = "mrpt::obs::CSensoryFrame";
+  std::string obj(1, static_cast<char>(0x80 | name.size()));
+  obj += name;
+  obj += std::string("\x01", 1) + std::string("\x07\0\0\0", 4) + std::string(4, '\xFF');
+  const auto path = tempPath("sf1.rawlog");
+  writeAll(path, obj + std::string(64, '\0'));
+  std::string err;
+  EXPECT_EQ(readUntilError(path, err), 0u);
+  EXPECT_NE(err.find("a sensory frame of 4294967295 observations"), std::string::npos) << err;
+}
+
+TEST(RawlogReader, OldRangeScanVersionsHaveTheirSizesChecked) {
+  // Found by fuzzing: a version-0 CObservation3DRangeScan (MRPT 2.5 still reads v0-v10) with a
+  // damaged point count went to MRPT unchecked.
+  mrpt::io::CMemoryStream pose;
+  mrpt::serialization::archiveFrom(pose) << mrpt::poses::CPose3D();
+  const std::string name = "mrpt::obs::CObservation3DRangeScan";
+  std::string obj(1, static_cast<char>(0x80 | name.size()));
+  obj += name + std::string(1, '\0') + std::string(4, '\0');  // version 0, maxRange
+  obj += std::string(static_cast<const char*>(pose.getRawBufferData()), pose.getTotalBytesCount());
+  obj += std::string("\xF0\xFF\xFF\xFF", 4);  // 4294967280 points
+  const auto path = tempPath("scan0.rawlog");
+  writeAll(path, obj + std::string(64, '\0'));
+  std::string err;
+  EXPECT_EQ(readUntilError(path, err), 0u);
+  EXPECT_NE(err.find("points3D declares 4294967280 x 1 elements"), std::string::npos) << err;
 }
