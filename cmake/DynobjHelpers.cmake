@@ -59,7 +59,7 @@ endfunction()
 function(dynobj_add_app)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS" ${ARGN})
   add_executable(${ARG_NAME} ${ARG_SOURCES})
-  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS} dynobj::io)  # io: the crash guard (AppMain.h)
   # Shipped data: the source tree's share/dynobj when run from a build, else the installed copy.
   target_compile_definitions(${ARG_NAME} PRIVATE
     DYNOBJ_SHARE_DIR_BUILD="${DYNOBJ_SHARE_DIR_BUILD}"

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shared by the apps' mains: command-line parsing and uniform error reporting / exit codes:
 //   0 = success (or --help / --version), 1 = a runtime error (bad input, unwritable output, ...),
-//   2 = a bad command line.
+//   2 = a bad command line, 3 = crashed (a fatal signal caught by the crash guard, which removed the
+//   unfinished outputs: io/CrashGuard.h).
 #pragma once
 
+#include <dynobj/io/CrashGuard.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <cstdlib>
@@ -73,8 +75,10 @@ inline std::string shareDir() {
 #endif
 }
 
-/// Runs `body`, printing "<app>: error: <message>" and returning 1 on an exception.
+/// Runs `body`, printing "<app>: error: <message>" and returning 1 on an exception. The crash
+/// guard is installed first: a crash or a kill removes the `.partial` outputs.
 inline int runApp(const std::string& app, const std::function<int()>& body) {
+  dynobj::io::installCrashGuard(app);
   try {
     return body();
   } catch (const std::exception& e) {

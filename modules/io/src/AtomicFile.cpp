@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/io/AtomicFile.h"
 
+#include "dynobj/io/CrashGuard.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -24,14 +26,19 @@ void commitPartial(const std::string& path) {
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), partial_(partialName(path_)) {
+  guard_ = registerPartialOutput(partial_);
   out_.open(partial_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw std::runtime_error("cannot write '" + partial_ + "'");
+  if (!out_) {
+    unregisterPartialOutput(guard_);
+    throw std::runtime_error("cannot write '" + partial_ + "'");
+  }
 }
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
   out_.close();
   std::remove(partial_.c_str());
+  unregisterPartialOutput(guard_);
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {
@@ -46,20 +53,25 @@ void AtomicFile::commit() {
   if (!out_) throw std::runtime_error("error writing '" + partial_ + "'");
   commitPartial(path_);
   committed_ = true;
+  unregisterPartialOutput(guard_);
 }
 
 PartialPath::PartialPath(std::string path, const std::string& suffix)
-    : path_(std::move(path)), partial_(partialName(path_) + suffix) {}
+    : path_(std::move(path)), partial_(partialName(path_) + suffix) {
+  guard_ = registerPartialOutput(partial_);
+}
 
 PartialPath::~PartialPath() {
   if (committed_) return;
   std::error_code ec;
   std::filesystem::remove_all(partial_, ec);
+  unregisterPartialOutput(guard_);
 }
 
 void PartialPath::commit() {
   renameOrThrow(partial_, path_);
   committed_ = true;
+  unregisterPartialOutput(guard_);
 }
 
 }  // namespace dynobj::io

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/io/LabelFile.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 namespace dynobj::io {
 namespace {
+
+constexpr int kMaxSide = 65535;  ///< rows and cols of a label image (a 128 x 4096 LiDAR is far below)
 
 [[noreturn]] void bad(const std::string& path, std::size_t line, const std::string& what) {
   throw LabelFileError(path + ":" + std::to_string(line) + ": " + what);
@@ -25,14 +28,15 @@ LabelFile LabelFile::read(const std::string& path) {
     char tail = 0;
     f.instances = text.rfind("# dynobj-instances ", 0) == 0;
     const int got = f.instances
-                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%d cols=%d %c",
+                        ? std::sscanf(text.c_str(), "# dynobj-instances v1 rows=%7d cols=%7d %c",
                                       &f.rows, &f.cols, &tail)
-                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%d cols=%d %c",
+                        : std::sscanf(text.c_str(), "# dynobj-labels v1 rows=%7d cols=%7d %c",
                                       &f.rows, &f.cols, &tail);
-    if (got != 2 || f.rows <= 0 || f.cols <= 0)
+    if (got != 2 || f.rows <= 0 || f.cols <= 0 || f.rows > kMaxSide || f.cols > kMaxSide)
       bad(path, 1,
           "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
-              " or '# dynobj-instances v1 rows=<H> cols=<W>')");
+              " or '# dynobj-instances v1 rows=<H> cols=<W>', each at most " + std::to_string(kMaxSide) +
+              ")");
   }
   const std::uint64_t n_pixels =
       static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
@@ -47,7 +51,12 @@ LabelFile LabelFile::read(const std::string& path) {
     if (!f.sweeps.empty() && s.timestamp_ns <= f.sweeps.back().timestamp_ns)
       bad(path, line_no,
           "timestamp " + std::to_string(s.timestamp_ns) + " is not after the previous sweep's");
-    s.pixels.reserve(static_cast<std::size_t>(count));
+    if (static_cast<std::uint64_t>(count) > n_pixels)  // before reserving memory for them
+      bad(path, line_no,
+          "count " + std::to_string(count) + " is more than the " + std::to_string(f.rows) + "x" +
+              std::to_string(f.cols) + " image's pixels");
+    // Bounded: a count that the indices do not back up must not reserve memory.
+    s.pixels.reserve(static_cast<std::size_t>(std::min<long long>(count, 1 << 16)));
     long long idx = 0;
     char colon = 0;
     std::int32_t id = 0;

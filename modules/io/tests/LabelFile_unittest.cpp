@@ -72,6 +72,15 @@ TEST(LabelFile, ErrorsNameTheLine) {
   EXPECT_NE(errorOf(h + "10 0\n10 0\n").find(":3: timestamp 10 is not after"), std::string::npos);
   EXPECT_NE(errorOf(h + "10 1 x\n").find(":2: non-numeric"), std::string::npos);
   EXPECT_NE(errorOf(h + "abc\n").find(":2: expected"), std::string::npos);
+  // Found by fuzzing: a huge count reserved gigabytes before the indices were read.
+  EXPECT_NE(errorOf(h + "10 2000000000 1\n").find(":2: count 2000000000 is more than the 4x8"),
+            std::string::npos);
+  EXPECT_NE(errorOf(h + "10 33 1\n").find(":2: count 33 is more than"), std::string::npos);
+  // ... and a header of 64 x 5,120,070,100 pixels (int overflow) let a 1.5e9 count through.
+  EXPECT_NE(errorOf("# dynobj-labels v1 rows=64 cols=5120070100\n").find(":1: bad header"),
+            std::string::npos);
+  EXPECT_NE(errorOf("# dynobj-labels v1 rows=64 cols=70000\n").find("at most 65535"),
+            std::string::npos);
   EXPECT_EQ(errorOf(h + "10 0\n"), "");
 }
 

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mrptio/RawlogReader.h"
 
+#include <dynobj/io/CrashGuard.h>
+#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/system/filesystem.h>
 
 #include <algorithm>
+
+#include "SerializedObjectCheck.h"
 
 namespace dynobj::mrptio {
 
@@ -34,30 +38,62 @@ std::vector<mobs::CObservation::Ptr> RawlogEntry::observations() const {
   return out;
 }
 
+struct RawlogReader::Input {
+  explicit Input(std::unique_ptr<mrpt::io::CStream> source)
+      : stream(std::move(source)), archive(mrpt::serialization::archiveUniquePtrFrom(stream)) {}
+  detail::LookaheadStream stream;
+  std::unique_ptr<mrpt::serialization::CArchive> archive;
+};
+
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
   if (!mrpt::system::fileExists(path)) throw RawlogError("rawlog '" + path + "' does not exist");
   if (mrpt::system::getFileSize(path) == 0) throw RawlogError("rawlog '" + path + "' is empty");
+  auto file = std::make_unique<mrpt::io::CFileGZInputStream>();
   std::string err;
-  if (!in_.open(path, err))
+  if (!file->open(path, err))
     throw RawlogError("cannot open rawlog '" + path + "'" + (err.empty() ? "" : ": " + err));
-  archive_ = mrpt::serialization::archiveUniquePtrFrom(in_);
+  in_ = std::make_unique<Input>(std::move(file));
+  io::setCrashInput(path_);
+}
+
+RawlogReader::RawlogReader(std::unique_ptr<mrpt::io::CStream> stream, const std::string& name)
+    : path_(name), in_(std::make_unique<Input>(std::move(stream))) {}
+
+RawlogReader::~RawlogReader() = default;
+
+std::uint64_t RawlogReader::position() const {
+  return in_->stream.getPosition();
 }
 
 mrpt::serialization::CSerializable::Ptr RawlogReader::readObject(const char* what) {
-  const std::uint64_t before = in_.getPosition();
+  const std::uint64_t before = position();
+  io::setCrashPosition(entries_, before);
+  const auto fail = [&](bool truncated, const std::string& msg) {
+    return RawlogError("rawlog '" + path_ + "' is " + (truncated ? "truncated" : "damaged") +
+                       " at entry " + std::to_string(entries_) + " (" + what + ", byte " +
+                       std::to_string(before) + "): " + msg);
+  };
   try {
-    return archive_->ReadObject();
+    // Sizes first (MRPT would trust them), then MRPT reads the checked bytes.
+    if (detail::checkNextObject(in_->stream) == 0) return nullptr;  // clean end of file
+    return in_->archive->ReadObject();
+  } catch (const detail::ObjectTruncated& e) {
+    throw fail(true, e.what());
+  } catch (const detail::ObjectDamaged& e) {
+    throw fail(false, e.what());
   } catch (const mrpt::serialization::CExceptionEOF&) {
-    if (in_.getPosition() == before) return nullptr;  // nothing of a new object was read
+    if (position() == before) return nullptr;  // nothing of a new object was read
     throw RawlogError("rawlog '" + path_ + "' is truncated: entry " + std::to_string(entries_) +
-                      " (" + what + ") ends early at byte " + std::to_string(in_.getPosition()));
+                      " (" + what + ") ends early at byte " + std::to_string(position()));
   } catch (const std::exception& e) {
     const std::string msg = e.what();
-    char probe = 0;  // the object failed to parse: was it cut short by the end of the file?
-    const bool eof = msg.find("EOF") != std::string::npos || in_.Read(&probe, 1) == 0;
-    throw RawlogError("rawlog '" + path_ + "' is " + (eof ? "truncated" : "damaged") +
-                      " at entry " + std::to_string(entries_) + " (" + what + ", byte " +
-                      std::to_string(before) + "): " + firstLines(msg));
+    // The object failed to parse: was it cut short by the end of the file?
+    bool eof = msg.find("EOF") != std::string::npos;
+    try {
+      eof = eof || in_->stream.ensure(1) == 0;
+    } catch (const std::exception&) {  // the gzip data is corrupt too
+    }
+    throw fail(eof, firstLines(msg));
   }
 }
 

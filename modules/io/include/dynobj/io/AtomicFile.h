@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The project's one mechanism for output files that are either complete or absent: everything is
 // written to "<path>.partial" and renamed to <path> only by commit(); an uncommitted file (an
-// error, an exception) is removed. AtomicFile for files we write through a std::ofstream;
+// error, an exception) is removed, and so is one left by a crash or a kill (CrashGuard.h). AtomicFile for files we write through a std::ofstream;
 // PartialPath for files other libraries write by name (rawlogs, simplemaps, PNGs, folders).
 #pragma once
 
@@ -28,6 +28,7 @@ class AtomicFile {
   std::string path_, partial_;
   std::ofstream out_;
   bool committed_ = false;
+  int guard_ = -1;  ///< CrashGuard registration of partial_
 };
 
 /// A file (or folder) another library writes by name: write to partial(), then commit() renames
@@ -48,6 +49,7 @@ class PartialPath {
  private:
   std::string path_, partial_;
   bool committed_ = false;
+  int guard_ = -1;  ///< CrashGuard registration of partial_
 };
 
 /// "<path>.partial".

@@ -2,10 +2,11 @@
 // Streaming rawlog reader that tells a clean end of file from a damaged one. Stock
 // CRawlog::getActionObservationPairOrObservation() returns false for both; this reader throws a
 // RawlogError naming the entry instead, so no tool of ours mistakes a truncated file for a short
-// one.
+// one. Objects of the classes our rawlogs hold are checked before MRPT deserializes them
+// (damaged sizes make MRPT 2.5 crash: docs/formats.md, "MRPT quirks").
 #pragma once
 
-#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -42,6 +43,11 @@ class RawlogReader {
  public:
   /// Opens `path` (gzip or plain). Throws RawlogError if it is missing, empty or unreadable.
   explicit RawlogReader(const std::string& path);
+  /// Reads an already open stream (e.g. a mrpt::io::CMemoryStream); `name` is used in messages.
+  RawlogReader(std::unique_ptr<mrpt::io::CStream> stream, const std::string& name);
+  ~RawlogReader();
+  RawlogReader(const RawlogReader&) = delete;
+  RawlogReader& operator=(const RawlogReader&) = delete;
 
   /// Reads the next entry. Returns false at a clean end of file; throws RawlogError on a
   /// truncated or corrupt file, or an object of an unregistered or unexpected class.
@@ -50,14 +56,14 @@ class RawlogReader {
   const std::string& path() const { return path_; }
   std::size_t entriesRead() const { return entries_; }
   /// Uncompressed bytes consumed so far.
-  std::uint64_t position() { return in_.getPosition(); }
+  std::uint64_t position() const;
 
  private:
   mrpt::serialization::CSerializable::Ptr readObject(const char* what);
 
+  struct Input;
   std::string path_;
-  mrpt::io::CFileGZInputStream in_;
-  std::unique_ptr<mrpt::serialization::CArchive> archive_;
+  std::unique_ptr<Input> in_;
   std::size_t entries_ = 0;
 };
 
