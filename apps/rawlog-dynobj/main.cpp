@@ -38,6 +38,13 @@ int run(int argc, char** argv) {
                                     false, 0, "N", cmd);
   TCLAP::ValueArg<std::size_t> to("", "to", "Last entry to filter (later ones are copied)", false,
                                   std::numeric_limits<std::size_t>::max(), "N", cmd);
+  TCLAP::ValueArg<int> level("", "compression-level",
+                             "Output gzip level: 0 = plain rawlog, 1 = fastest (default) .. 3",
+                             false, 1, "0-3", cmd);
+  TCLAP::ValueArg<unsigned> threads("", "threads",
+                                    "Threads (0 = one per core, default; 1 = read, detect and "
+                                    "write one after another)",
+                                    false, 0, "N", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
   dynobj::mrptio::RawlogFilterOptions o;
@@ -55,6 +62,8 @@ int run(int argc, char** argv) {
   o.labels_out = labels_out.getValue();
   o.tracks_out = tracks_out.getValue();
   o.overwrite = overwrite.isSet();
+  o.compression_level = level.getValue();
+  o.threads = threads.getValue();
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto t0 = std::chrono::steady_clock::now();
   if (tty)

@@ -32,6 +32,17 @@ const char* toString(FilterMode m) {
   return "?";
 }
 
+FilterSummary& FilterSummary::operator+=(const FilterSummary& o) {
+  observations += o.observations;
+  lidar += o.lidar;
+  points += o.points;
+  dynamic_points += o.dynamic_points;
+  passed_through += o.passed_through;
+  for (const auto& [msg, n] : o.warnings) warnings[msg] += n;
+  detector_ms += o.detector_ms;
+  return *this;
+}
+
 DynamicObjectFilter::DynamicObjectFilter(Options opts)
     : opts_(std::move(opts)), converter_(opts_.sensor), detectors_(opts_.detector) {}
 
@@ -40,12 +51,16 @@ void DynamicObjectFilter::warn(const std::string& message) {
   summary_.passed_through++;
 }
 
+bool DynamicObjectFilter::handles(const mobs::CObservation& obs) const {
+  return detail::findObservationClass(obs) &&
+         (opts_.sensor_label.empty() || obs.sensorLabel == opts_.sensor_label);
+}
+
 const core::DetectionResult* DynamicObjectFilter::filter(
     const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra) {
   summary_.observations++;
-  const detail::ObservationClass* cls = obs ? detail::findObservationClass(*obs) : nullptr;
-  if (!cls) return nullptr;  // not a LiDAR observation
-  if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) return nullptr;
+  if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
+  const detail::ObservationClass* cls = detail::findObservationClass(*obs);
   const std::string mode = toString(opts_.mode);
   if (opts_.mode != FilterMode::Mark && cls->externallyStored && cls->externallyStored(*obs)) {
     // Its points / ranges live in external files, which this filter must not rewrite (and MRPT

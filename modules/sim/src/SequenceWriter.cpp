@@ -49,8 +49,8 @@ namespace {
 SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario,
                                int compression)
     : s_(scenario), base_(out_dir + "/" + scenario.name), odo_rng_(scenario.seed ^ 0x5EEDu) {
-  if (compression < 0 || compression > 9)
-    throw std::invalid_argument("rawlog compression must be 0..9, got " +
+  if (compression < 0 || compression > mrptio::RawlogWriter::kMaxLevel)
+    throw std::invalid_argument("rawlog compression must be 0..3, got " +
                                 std::to_string(compression));
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);

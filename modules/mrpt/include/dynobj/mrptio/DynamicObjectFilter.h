@@ -40,6 +40,9 @@ struct FilterSummary {
   std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
   std::map<std::string, std::size_t> warnings;  ///< message -> count
   double detector_ms = 0;                       ///< total detector time
+
+  /// Adds the counts, times and warnings of `other`.
+  FilterSummary& operator+=(const FilterSummary& other);
 };
 
 class DynamicObjectFilter {
@@ -57,6 +60,9 @@ class DynamicObjectFilter {
   /// (when given). Returns this observation's detection, or nullptr when it was not processed.
   const core::DetectionResult* filter(const mrpt::obs::CObservation::Ptr& obs,
                                       std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr);
+  /// Whether filter() works on this observation (a LiDAR class, and the chosen label if any);
+  /// for the others filter() only counts them.
+  bool handles(const mrpt::obs::CObservation& obs) const;
   /// Every observation of a sensory frame; split-mode extras are inserted into it.
   void filter(mrpt::obs::CSensoryFrame& sf);
 

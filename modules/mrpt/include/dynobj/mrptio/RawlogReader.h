@@ -5,7 +5,6 @@
 // one.
 #pragma once
 
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -16,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "dynobj/mrptio/GzipStream.h"
 
 namespace dynobj::mrptio {
 
@@ -56,7 +57,7 @@ class RawlogReader {
   mrpt::serialization::CSerializable::Ptr readObject(const char* what);
 
   std::string path_;
-  mrpt::io::CFileGZInputStream in_;
+  GzipInputStream in_;  // gzip (one or several members) or plain, as CFileGZInputStream
   std::unique_ptr<mrpt::serialization::CArchive> archive_;
   std::size_t entries_ = 0;
 };
