@@ -21,6 +21,10 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "in.rawlog", cmd);
   TCLAP::ValueArg<std::string> out("o", "output", "Output rawlog", true, "", "out.rawlog", cmd);
   TCLAP::SwitchArg overwrite("w", "overwrite", "Replace an existing output file", cmd);
+  TCLAP::SwitchArg skip("", "skip-existing",
+                        "Batch jobs: when every output exists already (outputs are only ever "
+                        "complete), do nothing and exit 0",
+                        cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   TCLAP::ValueArg<std::string> mode("", "mode", "mark | drop | split | restore (default: drop)",
                                     false, "drop", "mode", cmd);
@@ -47,6 +51,15 @@ int run(int argc, char** argv) {
                                     false, 0, "N", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
+  if (skip.isSet() && overwrite.isSet()) {
+    std::cerr << "rawlog-dynobj: error: --skip-existing and -w/--overwrite exclude each other\n";
+    return 2;
+  }
+  if (skip.isSet() && dynobj::apps::allExist({out.getValue(), labels_out.getValue(),
+                                              tracks_out.getValue()})) {
+    std::printf("rawlog-dynobj: '%s' exists: skipped\n", out.getValue().c_str());
+    return 0;
+  }
   dynobj::mrptio::RawlogFilterOptions o;
   try {
     o.filter.mode = dynobj::mrptio::parseFilterMode(mode.getValue());
