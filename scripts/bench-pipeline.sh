@@ -47,38 +47,43 @@ SWEEPS=$("$RD" -i "$IN" -o "$SCRATCH/count.rawlog" -w -q --compression-level 0 |
 rm -f "$SCRATCH/count.rawlog"
 [ -n "$SWEEPS" ] && [ "$SWEEPS" -gt 0 ] || { echo "bench-pipeline: no LiDAR frames in '$IN'" >&2; exit 1; }
 
-# bench <name> <command...>: best wall time of $RUNS runs; prints one row.
-STOCK_S=""
-bench() {
-  local name="$1"; shift
-  local best="" best_line="" i
-  for ((i = 0; i < RUNS; i++)); do
-    /usr/bin/time -f "%e %U %S %M" -o "$SCRATCH/time" "$@" > "$SCRATCH/out.log" 2>&1 ||
-      { echo "bench-pipeline: '$name' failed:" >&2; tail -3 "$SCRATCH/out.log" >&2; exit 1; }
-    local line; line=$(tail -1 "$SCRATCH/time")
-    local wall=${line%% *}
-    if [ -z "$best" ] || awk -v a="$wall" -v b="$best" 'BEGIN{exit !(a < b)}'; then
-      best="$wall"; best_line="$line"
-    fi
-    rm -f "$SCRATCH"/*.rawlog
-  done
-  [ -n "$STOCK_S" ] || STOCK_S="$best"
-  read -r wall user sys rss <<< "$best_line"
-  awk -v n="$name" -v w="$wall" -v u="$user" -v s="$sys" -v r="$rss" -v k="$SWEEPS" -v st="$STOCK_S" \
-    'BEGIN{printf "%-44s %8.2f %9.1f %6.2f %8.2f %8.0f\n", n, w, 1000*w/k, w/st, u+s, r/1024}'
-}
-
-echo "bench-pipeline: $IN ($SWEEPS LiDAR sweeps, $(du -h "$IN" | cut -f1)), best of $RUNS runs each"
-echo "machine: $(nproc) cores, $(uname -m), $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)," \
-     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
-printf "%-44s %8s %9s %6s %8s %8s\n" "command" "wall s" "ms/sweep" "ratio" "CPU s" "RSS MB"
-bench "rawlog-edit copy (stock, zlib level 1)" \
+# The commands, each a name and a command line (run through eval, arguments quoted).
+NAMES=() CMDS=()
+add() { NAMES+=("$1"); shift; local q; printf -v q '%q ' "$@"; CMDS+=("$q"); }
+add "rawlog-edit copy (stock, zlib level 1)" \
   rawlog-edit -q -w -i "$IN" -o "$SCRATCH/stock.rawlog" --remove-label DYNOBJ_BENCH_NO_SUCH_LABEL
 for t in $THREADS; do
   for l in $LEVELS; do
-    bench "rawlog-dynobj --mode drop, threads $t, level $l" \
+    add "rawlog-dynobj --mode drop, threads $t, level $l" \
       "$RD" -i "$IN" -o "$SCRATCH/rd.rawlog" -w -q --mode drop --threads "$t" --compression-level "$l"
   done
 done
-bench "dynobj-detect (read + detect, no output)" "$DETECT" -i "$IN"
-echo "(ratio: wall time / stock rawlog-edit copy; CPU: user + sys of the best run; RSS: peak)"
+add "dynobj-detect (read + detect, no output)" "$DETECT" -i "$IN"
+
+# Runs interleaved (every command once per round, N rounds): a change of the machine's load
+# during the benchmark then hits every command alike. Best wall time per command.
+BEST=()
+for ((r = 0; r < RUNS; r++)); do
+  for i in "${!CMDS[@]}"; do
+    eval "/usr/bin/time -f '%e %U %S %M' -o '$SCRATCH/time' ${CMDS[$i]}" > "$SCRATCH/out.log" 2>&1 ||
+      { echo "bench-pipeline: '${NAMES[$i]}' failed:" >&2; tail -3 "$SCRATCH/out.log" >&2; exit 1; }
+    line=$(tail -1 "$SCRATCH/time")
+    if [ -z "${BEST[$i]:-}" ] || awk -v a="${line%% *}" -v b="${BEST[$i]%% *}" 'BEGIN{exit !(a < b)}'; then
+      BEST[$i]="$line"
+    fi
+    rm -f "$SCRATCH"/*.rawlog
+  done
+done
+
+echo "bench-pipeline: $IN ($SWEEPS LiDAR sweeps, $(du -h "$IN" | cut -f1))"
+echo "machine: $(nproc) cores, $(uname -m), $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)," \
+     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
+printf "%-48s %8s %9s %6s %8s %8s\n" "command" "wall s" "ms/sweep" "ratio" "CPU s" "RSS MB"
+STOCK_S="${BEST[0]%% *}"
+for i in "${!CMDS[@]}"; do
+  read -r wall user sys rss <<< "${BEST[$i]}"
+  awk -v n="${NAMES[$i]}" -v w="$wall" -v u="$user" -v s="$sys" -v r="$rss" -v k="$SWEEPS" -v st="$STOCK_S" \
+    'BEGIN{printf "%-48s %8.2f %9.1f %6.2f %8.2f %8.0f\n", n, w, 1000*w/k, w/st, u+s, r/1024}'
+done
+echo "(best of $RUNS interleaved rounds; ratio: wall time / stock rawlog-edit copy; CPU: user + sys"
+echo " of that run; RSS: its peak; load average after: $(cut -d' ' -f1-3 /proc/loadavg))"
