@@ -56,8 +56,29 @@ bool DynamicObjectFilter::handles(const mobs::CObservation& obs) const {
          (opts_.sensor_label.empty() || obs.sensorLabel == opts_.sensor_label);
 }
 
-const core::DetectionResult* DynamicObjectFilter::filter(
-    const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra) {
+bool DynamicObjectFilter::converts(const mobs::CObservation& obs) const {
+  if (!handles(obs)) return false;
+  // filter()'s checks before its conversion, in the same order.
+  const detail::ObservationClass* cls = detail::findObservationClass(obs);
+  if (opts_.mode != FilterMode::Mark && cls->externallyStored && cls->externallyStored(obs))
+    return false;
+  if (opts_.mode == FilterMode::Restore) return false;
+  return opts_.mode != FilterMode::Mark || cls->mark;
+}
+
+void DynamicObjectFilter::preconvert(const mobs::CObservation& obs, PreconvertedFrame& out) {
+  try {
+    converter_.convert(obs, out.frame);
+    out.ok = true;
+  } catch (const ConversionError& e) {
+    out.ok = false;
+    out.error = e.what();
+  }
+}
+
+const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservation::Ptr& obs,
+                                                         std::vector<mobs::CObservation::Ptr>* extra,
+                                                         PreconvertedFrame* pre) {
   summary_.observations++;
   if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
   const detail::ObservationClass* cls = detail::findObservationClass(*obs);
@@ -83,11 +104,19 @@ const core::DetectionResult* DynamicObjectFilter::filter(
     return nullptr;
   }
   // The per-frame step shared with SequenceRunner: convert -> the sensor's detector -> tags.
-  try {
-    converter_.convert(*obs, frame_);
-  } catch (const ConversionError& e) {
-    warn(std::string("not processed: ") + e.what());
-    return nullptr;
+  if (pre) {  // converted ahead, in the same order: take its frame
+    if (!pre->ok) {
+      warn("not processed: " + pre->error);
+      return nullptr;
+    }
+    std::swap(frame_, pre->frame);
+  } else {
+    try {
+      converter_.convert(*obs, frame_);
+    } catch (const ConversionError& e) {
+      warn(std::string("not processed: ") + e.what());
+      return nullptr;
+    }
   }
   const core::DetectionResult& r = detectors_.process(obs->sensorLabel, frame_);
   summary_.detector_ms += r.timings.total;

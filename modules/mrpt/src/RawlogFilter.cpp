@@ -9,7 +9,6 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 #include "RawlogPipeline.h"
 #include "dynobj/mrptio/RawlogReader.h"
@@ -77,7 +76,7 @@ RawlogFilterSummary filterSerial(RawlogReader& reader, RawlogWriter& out,
 
 unsigned RawlogFilterOptions::threadCount() const {
   if (threads > 0) return threads;
-  return std::max(1u, std::thread::hardware_concurrency());
+  return RawlogWriter::hardwareThreads();
 }
 
 RawlogFilterSummary filterRawlog(const std::string& input, const std::string& output,

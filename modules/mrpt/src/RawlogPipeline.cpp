@@ -2,10 +2,12 @@
 // filterRawlog with threads > 1. Threads and what crosses between them:
 //
 //   reader thread      RawlogReader::next() (gzip inflate + MRPT deserialization); splits each
-//                      entry into observation tasks, hands the LiDAR ones to their label's lane,
-//                      and queues the entry (a Job) for the writer: `jobs_`, bounded.
-//   lane threads       one DynamicObjectFilter each (convert -> the label's detector -> tags);
-//                      a label always goes to the same lane, so its frames are detected in order.
+//                      entry into observation tasks, converts the LiDAR ones into frames
+//                      (DynamicObjectFilter::preconvert, in entry order, as the single-threaded
+//                      loop would), hands them to their label's lane, and queues the entry (a
+//                      Job) for the writer: `jobs_`, bounded.
+//   lane threads       one DynamicObjectFilter each (the label's detector -> tags); a label
+//                      always goes to the same lane, so its frames are detected in order.
 //   calling thread     takes the jobs in entry order, waits until its lanes are done with it,
 //                      hands the results on (labels, tracks, progress) and serializes the entry
 //                      into the RawlogWriter, whose workers compress blocks in parallel.
@@ -74,6 +76,7 @@ class BoundedQueue {
 /// One observation of an entry, and what its lane made of it.
 struct Task {
   mobs::CObservation::Ptr obs;
+  std::unique_ptr<PreconvertedFrame> pre;       ///< converted by the reader thread
   std::vector<mobs::CObservation::Ptr> extra;   ///< split mode: the removed points
   std::optional<core::DetectionResult> result;  ///< a copy, when results are wanted
   FilterSummary delta;                          ///< what this observation added to the summary
@@ -173,14 +176,18 @@ class Pipeline {
       if (!reader_.next(job->entry)) break;
       const RawlogEntry& e = job->entry;
       job->filtered = e.index >= o_.from && e.index <= o_.to;
-      for (auto& obs : e.observations()) job->tasks.push_back(Task{obs, {}, {}, {}});
+      for (auto& obs : e.observations()) job->tasks.push_back(Task{obs, {}, {}, {}, {}});
       std::vector<std::pair<Lane*, std::size_t>> routed;
       if (job->filtered) {
         for (std::size_t i = 0; i < job->tasks.size(); i++) {
           const auto& obs = job->tasks[i].obs;
-          if (obs && routing_filter_.handles(*obs))
+          if (obs && routing_filter_.handles(*obs)) {
+            if (routing_filter_.converts(*obs)) {  // the lanes only detect
+              job->tasks[i].pre = spareFrame();
+              routing_filter_.preconvert(*obs, *job->tasks[i].pre);
+            }
             routed.emplace_back(&laneOf(obs->sensorLabel), i);
-          else
+          } else
             job->tasks[i].delta.observations = 1;  // not a LiDAR one: only counted
         }
         unrouted_observations_ += job->tasks.size() - routed.size();
@@ -190,6 +197,15 @@ class Pipeline {
       if (!jobs_.push(std::move(job))) return;  // stopped
     }
     jobs_.close();
+  }
+
+  /// A frame to convert into: one written and freed already (its buffers), or a new one.
+  std::unique_ptr<PreconvertedFrame> spareFrame() {
+    std::lock_guard<std::mutex> lk(spare_m_);
+    if (spare_frames_.empty()) return std::make_unique<PreconvertedFrame>();
+    auto f = std::move(spare_frames_.back());
+    spare_frames_.pop_back();
+    return f;
   }
 
   Lane& laneOf(const std::string& label) {
@@ -217,7 +233,7 @@ class Pipeline {
       Task& t = job.tasks[item.second];
       if (stopping_) continue;  // an error elsewhere: nobody waits for this any more
       const FilterSummary before = lane.filter.summary();
-      const core::DetectionResult* r = lane.filter.filter(t.obs, &t.extra);
+      const core::DetectionResult* r = lane.filter.filter(t.obs, &t.extra, t.pre.get());
       t.delta = difference(lane.filter.summary(), before);
       if (r && keep_results_) {
         t.result = *r;
@@ -239,6 +255,10 @@ class Pipeline {
     for (auto& t : job.tasks) {
       running += t.delta;
       if (job.filtered && keep_results_) on_result(*t.obs, t.result ? &*t.result : nullptr);
+      if (t.pre) {  // its buffers go back to the reader thread
+        std::lock_guard<std::mutex> lk(spare_m_);
+        spare_frames_.push_back(std::move(t.pre));
+      }
     }
     if (e.isPair()) {
       for (auto& t : job.tasks)
@@ -255,11 +275,13 @@ class Pipeline {
   const RawlogFilterOptions& o_;
   const std::size_t max_lanes_;
   const bool keep_results_;
-  DynamicObjectFilter routing_filter_{o_.filter};  // only its handles() is used (reader thread)
+  DynamicObjectFilter routing_filter_{o_.filter};  // handles(), converts(), preconvert(): reader
   BoundedQueue<JobPtr> jobs_;
   std::vector<std::unique_ptr<Lane>> lanes_;  // created and looked up by the reader thread
   std::map<std::string, std::size_t> lane_of_label_;
   std::size_t unrouted_observations_ = 0;  // reader thread; read after it is joined
+  std::mutex spare_m_;
+  std::vector<std::unique_ptr<PreconvertedFrame>> spare_frames_;  // at most the jobs in flight
   std::thread reader_thread_;
   std::mutex done_m_;
   std::condition_variable done_cv_;

@@ -171,7 +171,9 @@ RawlogWriter::RawlogWriter(const std::string& path, int compress_level, unsigned
   }
 }
 
-RawlogWriter::~RawlogWriter() = default;  // an uncommitted file is removed by io::AtomicFile
+RawlogWriter::~RawlogWriter() = default;
+
+unsigned RawlogWriter::hardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }  // an uncommitted file is removed by io::AtomicFile
 
 void RawlogWriter::write(const mrpt::serialization::CSerializable& obj) {
   StringSink sink(impl_->current);

@@ -56,7 +56,8 @@ SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scena
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
-  rawlog_ = std::make_unique<mrptio::RawlogWriter>(rawlogPath(), compression);
+  rawlog_ = std::make_unique<mrptio::RawlogWriter>(rawlogPath(), compression,
+                                                   mrptio::RawlogWriter::hardwareThreads());
   labels_ = std::make_unique<io::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
   instances_ =
       std::make_unique<io::LabelFileWriter>(instancesPath(), s_.sensor.rows, s_.sensor.cols, true);

@@ -35,6 +35,9 @@ class RawlogWriter {
   RawlogWriter(const RawlogWriter&) = delete;
   RawlogWriter& operator=(const RawlogWriter&) = delete;
 
+  /// One compression thread per hardware thread (at least 1).
+  static unsigned hardwareThreads();
+
   /// Appends one object (an observation, a sensory frame, an action collection). It is
   /// serialized before this returns: the caller may change or free it afterwards. Blocks while
   /// too many blocks wait for compression (memory stays bounded). Throws std::runtime_error on a
