@@ -6,7 +6,9 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationComment.h>
+#include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
 
@@ -129,6 +131,38 @@ TEST(RawlogWriter, StockReaderDecompressesEveryMemberToTheSameBytes) {
       }
       EXPECT_EQ(n, kComments);
     }
+  }
+}
+
+TEST(RawlogWriter, RawLogViewersLoaderReadsEveryMember) {
+  // RawLogViewer (and CRawlog users) load a whole file with CRawlog::loadFromRawLogFile (which
+  // keeps comments aside: laser scans here). 40 scans of ~150 kB: several members.
+  const int n = 40, rays = 30000;
+  for (int level : {0, 1}) {
+    const std::string path = tempPath("viewer.rawlog");
+    {
+      RawlogWriter w(path, level, 3);
+      for (int i = 0; i < n; i++) {
+        mrpt::obs::CObservation2DRangeScan scan;
+        scan.sensorLabel = "LASER";
+        scan.timestamp = mrpt::Clock::fromDouble(1000.0 + i);
+        scan.resizeScan(rays);
+        for (int k = 0; k < rays; k++) {
+          scan.setScanRange(k, static_cast<float>((i * rays + k) % 9973) * 0.001f);
+          scan.setScanRangeValidity(k, true);
+        }
+        w.write(scan);
+      }
+      w.commit();
+    }
+    mrpt::obs::CRawlog log;
+    ASSERT_TRUE(log.loadFromRawLogFile(path));
+    ASSERT_EQ(log.size(), static_cast<std::size_t>(n));
+    auto last = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(
+        log.getAsObservation(n - 1));
+    ASSERT_TRUE(last);
+    EXPECT_EQ(last->getScanRange(rays - 1),
+              static_cast<float>(((n - 1) * rays + rays - 1) % 9973) * 0.001f);
   }
 }
 
