@@ -12,6 +12,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -59,6 +60,14 @@ inline void ensureDirectory(const std::string& dir) {
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error("cannot create output directory '" + dir + "'" +
                              (ec ? ": " + ec.message() : std::string()));
+}
+
+/// Whether every non-empty path of `paths` exists (for --skip-existing: our outputs are written
+/// as <file>.partial and renamed when complete, so an existing output is a complete one).
+inline bool allExist(std::initializer_list<std::string> paths) {
+  for (const auto& p : paths)
+    if (!p.empty() && !std::filesystem::exists(p)) return false;
+  return true;
 }
 
 /// The shipped data folder (share/dynobj): $DYNOBJ_SHARE if set, else the source tree's when

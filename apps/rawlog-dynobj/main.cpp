@@ -21,6 +21,10 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "in.rawlog", cmd);
   TCLAP::ValueArg<std::string> out("o", "output", "Output rawlog", true, "", "out.rawlog", cmd);
   TCLAP::SwitchArg overwrite("w", "overwrite", "Replace an existing output file", cmd);
+  TCLAP::SwitchArg skip("", "skip-existing",
+                        "Batch jobs: when every output exists already (outputs are only ever "
+                        "complete), do nothing and exit 0",
+                        cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   TCLAP::ValueArg<std::string> mode("", "mode", "mark | drop | split | restore (default: drop)",
                                     false, "drop", "mode", cmd);
@@ -38,8 +42,24 @@ int run(int argc, char** argv) {
                                     false, 0, "N", cmd);
   TCLAP::ValueArg<std::size_t> to("", "to", "Last entry to filter (later ones are copied)", false,
                                   std::numeric_limits<std::size_t>::max(), "N", cmd);
+  TCLAP::ValueArg<int> level("", "compression-level",
+                             "Output gzip level: 0 = plain rawlog, 1 = fastest (default) .. 3",
+                             false, 1, "0-3", cmd);
+  TCLAP::ValueArg<unsigned> threads("", "threads",
+                                    "Threads (0 = one per core, default; 1 = read, detect and "
+                                    "write one after another)",
+                                    false, 0, "N", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
+  if (skip.isSet() && overwrite.isSet()) {
+    std::cerr << "rawlog-dynobj: error: --skip-existing and -w/--overwrite exclude each other\n";
+    return 2;
+  }
+  if (skip.isSet() && dynobj::apps::allExist({out.getValue(), labels_out.getValue(),
+                                              tracks_out.getValue()})) {
+    std::printf("rawlog-dynobj: '%s' exists: skipped\n", out.getValue().c_str());
+    return 0;
+  }
   dynobj::mrptio::RawlogFilterOptions o;
   try {
     o.filter.mode = dynobj::mrptio::parseFilterMode(mode.getValue());
@@ -55,6 +75,8 @@ int run(int argc, char** argv) {
   o.labels_out = labels_out.getValue();
   o.tracks_out = tracks_out.getValue();
   o.overwrite = overwrite.isSet();
+  o.compression_level = level.getValue();
+  o.threads = threads.getValue();
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto t0 = std::chrono::steady_clock::now();
   if (tty)

@@ -32,6 +32,17 @@ const char* toString(FilterMode m) {
   return "?";
 }
 
+FilterSummary& FilterSummary::operator+=(const FilterSummary& o) {
+  observations += o.observations;
+  lidar += o.lidar;
+  points += o.points;
+  dynamic_points += o.dynamic_points;
+  passed_through += o.passed_through;
+  for (const auto& [msg, n] : o.warnings) warnings[msg] += n;
+  detector_ms += o.detector_ms;
+  return *this;
+}
+
 DynamicObjectFilter::DynamicObjectFilter(Options opts)
     : opts_(std::move(opts)), converter_(opts_.sensor), detectors_(opts_.detector) {}
 
@@ -40,12 +51,37 @@ void DynamicObjectFilter::warn(const std::string& message) {
   summary_.passed_through++;
 }
 
-const core::DetectionResult* DynamicObjectFilter::filter(
-    const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra) {
+bool DynamicObjectFilter::handles(const mobs::CObservation& obs) const {
+  return detail::findObservationClass(obs) &&
+         (opts_.sensor_label.empty() || obs.sensorLabel == opts_.sensor_label);
+}
+
+bool DynamicObjectFilter::converts(const mobs::CObservation& obs) const {
+  if (!handles(obs)) return false;
+  // filter()'s checks before its conversion, in the same order.
+  const detail::ObservationClass* cls = detail::findObservationClass(obs);
+  if (opts_.mode != FilterMode::Mark && cls->externallyStored && cls->externallyStored(obs))
+    return false;
+  if (opts_.mode == FilterMode::Restore) return false;
+  return opts_.mode != FilterMode::Mark || cls->mark;
+}
+
+void DynamicObjectFilter::preconvert(const mobs::CObservation& obs, PreconvertedFrame& out) {
+  try {
+    converter_.convert(obs, out.frame);
+    out.ok = true;
+  } catch (const ConversionError& e) {
+    out.ok = false;
+    out.error = e.what();
+  }
+}
+
+const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservation::Ptr& obs,
+                                                         std::vector<mobs::CObservation::Ptr>* extra,
+                                                         PreconvertedFrame* pre) {
   summary_.observations++;
-  const detail::ObservationClass* cls = obs ? detail::findObservationClass(*obs) : nullptr;
-  if (!cls) return nullptr;  // not a LiDAR observation
-  if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) return nullptr;
+  if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
+  const detail::ObservationClass* cls = detail::findObservationClass(*obs);
   const std::string mode = toString(opts_.mode);
   if (opts_.mode != FilterMode::Mark && cls->externallyStored && cls->externallyStored(*obs)) {
     // Its points / ranges live in external files, which this filter must not rewrite (and MRPT
@@ -68,11 +104,19 @@ const core::DetectionResult* DynamicObjectFilter::filter(
     return nullptr;
   }
   // The per-frame step shared with SequenceRunner: convert -> the sensor's detector -> tags.
-  try {
-    converter_.convert(*obs, frame_);
-  } catch (const ConversionError& e) {
-    warn(std::string("not processed: ") + e.what());
-    return nullptr;
+  if (pre) {  // converted ahead, in the same order: take its frame
+    if (!pre->ok) {
+      warn("not processed: " + pre->error);
+      return nullptr;
+    }
+    std::swap(frame_, pre->frame);
+  } else {
+    try {
+      converter_.convert(*obs, frame_);
+    } catch (const ConversionError& e) {
+      warn(std::string("not processed: ") + e.what());
+      return nullptr;
+    }
   }
   const core::DetectionResult& r = detectors_.process(obs->sensorLabel, frame_);
   summary_.detector_ms += r.timings.total;

@@ -4,11 +4,13 @@
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/io/TracksCsv.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 
+#include "RawlogPipeline.h"
 #include "dynobj/mrptio/RawlogReader.h"
 #include "dynobj/mrptio/RawlogWriter.h"
 
@@ -40,28 +42,10 @@ class LabelsOut {
   std::optional<io::LabelFileWriter> writer_;
 };
 
-}  // namespace
-
-RawlogFilterSummary filterRawlog(const std::string& input, const std::string& output,
-                                 const RawlogFilterOptions& o) {
-  // Never touch the input; never replace an output unless asked.
-  std::error_code ec;
-  if (fs::exists(output) && fs::equivalent(input, output, ec))
-    throw std::runtime_error("the output '" + output + "' is the input file");
-  if (fs::exists(output) && !o.overwrite)
-    throw std::runtime_error("output '" + output + "' exists (use -w to replace it)");
-  RawlogReader reader(input);
-  RawlogWriter out(output);
-  std::optional<LabelsOut> labels;
-  if (!o.labels_out.empty()) labels.emplace(o.labels_out);
-  std::optional<io::TracksCsvWriter> tracks;
-  if (!o.tracks_out.empty()) tracks.emplace(o.tracks_out);
+/// The single-threaded loop: read, detect, write, one entry after the other.
+RawlogFilterSummary filterSerial(RawlogReader& reader, RawlogWriter& out,
+                                 const RawlogFilterOptions& o, const detail::ResultSink& onResult) {
   DynamicObjectFilter filter(o.filter);
-  const auto onResult = [&](const mrpt::obs::CObservation& obs, const core::DetectionResult* r) {
-    if (!r) return;
-    if (tracks) tracks->write(obs.sensorLabel, *r);
-    if (labels) labels->write(obs.sensorLabel, *r);
-  };
   RawlogEntry e;
   std::vector<mrpt::obs::CObservation::Ptr> extra;
   while (reader.next(e)) {
@@ -85,10 +69,47 @@ RawlogFilterSummary filterRawlog(const std::string& input, const std::string& ou
     }
     if (o.progress) o.progress(e.index + 1, filter.summary());
   }
+  return {reader.entriesRead(), filter.summary()};
+}
+
+}  // namespace
+
+unsigned RawlogFilterOptions::threadCount() const {
+  if (threads > 0) return threads;
+  return RawlogWriter::hardwareThreads();
+}
+
+RawlogFilterSummary filterRawlog(const std::string& input, const std::string& output,
+                                 const RawlogFilterOptions& o) {
+  // Never touch the input; never replace an output unless asked.
+  std::error_code ec;
+  if (fs::exists(output) && fs::equivalent(input, output, ec))
+    throw std::runtime_error("the output '" + output + "' is the input file");
+  if (fs::exists(output) && !o.overwrite)
+    throw std::runtime_error("output '" + output + "' exists (use -w to replace it)");
+  const unsigned threads = o.threadCount();
+  RawlogReader reader(input);
+  RawlogWriter out(output, o.compression_level, threads);
+  std::optional<LabelsOut> labels;
+  if (!o.labels_out.empty()) labels.emplace(o.labels_out);
+  std::optional<io::TracksCsvWriter> tracks;
+  if (!o.tracks_out.empty()) tracks.emplace(o.tracks_out);
+  detail::ResultSink onResult;
+  if (labels || tracks)
+    onResult = [&](const mrpt::obs::CObservation& obs, const core::DetectionResult* r) {
+      if (!r) return;
+      if (tracks) tracks->write(obs.sensorLabel, *r);
+      if (labels) labels->write(obs.sensorLabel, *r);
+    };
+  else
+    onResult = [](const mrpt::obs::CObservation&, const core::DetectionResult*) {};
+  const RawlogFilterSummary summary =
+      threads > 1 ? detail::filterPipelined(reader, out, o, threads, onResult, labels || tracks)
+                  : filterSerial(reader, out, o, onResult);
   out.commit();
   if (labels) labels->close();
   if (tracks) tracks->close();
-  return {reader.entriesRead(), filter.summary()};
+  return summary;
 }
 
 }  // namespace dynobj::mrptio

@@ -2,12 +2,13 @@
 #include "dynobj/mrptio/RawlogReader.h"
 
 #include <dynobj/io/CrashGuard.h>
-#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CStream.h>
 #include <mrpt/system/filesystem.h>
 
 #include <algorithm>
 
 #include "SerializedObjectCheck.h"
+#include "dynobj/mrptio/GzipStream.h"
 
 namespace dynobj::mrptio {
 
@@ -48,7 +49,7 @@ struct RawlogReader::Input {
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
   if (!mrpt::system::fileExists(path)) throw RawlogError("rawlog '" + path + "' does not exist");
   if (mrpt::system::getFileSize(path) == 0) throw RawlogError("rawlog '" + path + "' is empty");
-  auto file = std::make_unique<mrpt::io::CFileGZInputStream>();
+  auto file = std::make_unique<GzipInputStream>();  // gzip (one or several members) or plain
   std::string err;
   if (!file->open(path, err))
     throw RawlogError("cannot open rawlog '" + path + "'" + (err.empty() ? "" : ": " + err));

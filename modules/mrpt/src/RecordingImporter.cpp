@@ -41,7 +41,7 @@ double intensityScale(const core::PointCloud& c) {
 class SweepWriter {
  public:
   SweepWriter(const ImportOptions& o, const std::string& output, std::size_t sweeps)
-      : o_(o), out_(output) {
+      : o_(o), out_(output, 1, RawlogWriter::hardwareThreads()) {  // compressed alongside
     if (!o.poses.empty()) {
       poses_ = io::readPoseFile(o.poses);
       if (sweeps && poses_.size() != sweeps)

@@ -49,14 +49,15 @@ namespace {
 SequenceWriter::SequenceWriter(const std::string& out_dir, const Scenario& scenario,
                                int compression)
     : s_(scenario), base_(out_dir + "/" + scenario.name), odo_rng_(scenario.seed ^ 0x5EEDu) {
-  if (compression < 0 || compression > 9)
-    throw std::invalid_argument("rawlog compression must be 0..9, got " +
+  if (compression < 0 || compression > mrptio::RawlogWriter::kMaxLevel)
+    throw std::invalid_argument("rawlog compression must be 0..3, got " +
                                 std::to_string(compression));
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("cannot create output directory '" + out_dir + "'");
-  rawlog_ = std::make_unique<mrptio::RawlogWriter>(rawlogPath(), compression);
+  rawlog_ = std::make_unique<mrptio::RawlogWriter>(rawlogPath(), compression,
+                                                   mrptio::RawlogWriter::hardwareThreads());
   labels_ = std::make_unique<io::LabelFileWriter>(labelsPath(), s_.sensor.rows, s_.sensor.cols);
   instances_ =
       std::make_unique<io::LabelFileWriter>(instancesPath(), s_.sensor.rows, s_.sensor.cols, true);

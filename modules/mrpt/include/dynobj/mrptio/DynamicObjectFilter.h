@@ -40,6 +40,18 @@ struct FilterSummary {
   std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
   std::map<std::string, std::size_t> warnings;  ///< message -> count
   double detector_ms = 0;                       ///< total detector time
+
+  /// Adds the counts, times and warnings of `other`.
+  FilterSummary& operator+=(const FilterSummary& other);
+};
+
+/// An observation converted ahead of filter(), by another thread (the pipelined rawlog filter
+/// converts in its reader thread while a lane detects the previous frame): the frame, or the
+/// conversion's error message.
+struct PreconvertedFrame {
+  core::LidarFrame frame;
+  bool ok = false;
+  std::string error;  ///< ConversionError's message when !ok
 };
 
 class DynamicObjectFilter {
@@ -55,8 +67,20 @@ class DynamicObjectFilter {
 
   /// Filters one observation in place. In split mode the removed points are appended to `extra`
   /// (when given). Returns this observation's detection, or nullptr when it was not processed.
+  /// `pre`: the observation already converted by preconvert() (of a filter with the same
+  /// options, fed the same observations in the same order); its frame is taken over.
   const core::DetectionResult* filter(const mrpt::obs::CObservation::Ptr& obs,
-                                      std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr);
+                                      std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr,
+                                      PreconvertedFrame* pre = nullptr);
+  /// Whether filter() would convert this observation (a handled LiDAR observation that the mode
+  /// does not pass through unconverted). Has no side effect.
+  bool converts(const mrpt::obs::CObservation& obs) const;
+  /// filter()'s conversion step alone, for an observation that converts(): the frame or the
+  /// error into `out`. Uses (and advances) this filter's converter: one thread only.
+  void preconvert(const mrpt::obs::CObservation& obs, PreconvertedFrame& out);
+  /// Whether filter() works on this observation (a LiDAR class, and the chosen label if any);
+  /// for the others filter() only counts them.
+  bool handles(const mrpt::obs::CObservation& obs) const;
   /// Every observation of a sensory frame; split-mode extras are inserted into it.
   void filter(mrpt::obs::CSensoryFrame& sf);
 

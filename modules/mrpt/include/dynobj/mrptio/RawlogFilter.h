@@ -3,6 +3,12 @@
 // flat), every observation through a DynamicObjectFilter; entries outside [from, to] copied
 // unchanged; the rawlog format (pairs or observations) kept. Every output is written through
 // io::PartialPath / io::AtomicFile: complete or absent.
+//
+// With threads > 1 the work is pipelined (docs/architecture.md, "Pipelined rawlog filter"): one
+// thread reads and decompresses, one detection lane per sensor label (up to `threads` lanes, each
+// label's frames in order), the calling thread serializes in entry order, `threads` workers
+// compress (RawlogWriter). The output is the same, observation for observation and byte for byte
+// once decompressed, as with threads = 1; memory is bounded by the queues.
 #pragma once
 
 #include <cstddef>
@@ -21,8 +27,14 @@ struct RawlogFilterOptions {
   std::string labels_out;  ///< also the detections as a label file v1 ("" = no; one sensor only)
   std::string tracks_out;  ///< also the tracked objects as CSV ("" = no)
   bool overwrite = false;  ///< replace an existing output (never the input itself)
-  /// Called after each entry with (entries done, the filter's summary so far).
+  int compression_level = 1;  ///< output: 0 = plain rawlog, 1 (fastest) .. 3 gzip
+  unsigned threads = 0;       ///< 1 = read, detect, write one after another; 0 = one per core
+  /// Called after each entry with (entries done, the filter's summary so far). With threads > 1
+  /// it is called from the calling thread, in entry order.
   std::function<void(std::size_t, const FilterSummary&)> progress;
+
+  /// `threads`, or the number of hardware threads when it is 0.
+  unsigned threadCount() const;
 };
 
 struct RawlogFilterSummary {

@@ -28,8 +28,8 @@ namespace dynobj::sim {
 class SequenceWriter {
  public:
   /// Creates `out_dir` if needed. Throws std::runtime_error naming a file it cannot create.
-  /// `compression` = gzip level of the rawlog, 0 (stored: fastest, largest) to 9; readers do
-  /// not care.
+  /// `compression` = gzip level of the rawlog, 0 (a plain rawlog: fastest, largest) to 3
+  /// (mrptio::RawlogWriter); readers do not care.
   SequenceWriter(const std::string& out_dir, const Scenario& scenario, int compression = 1);
   ~SequenceWriter();
   SequenceWriter(const SequenceWriter&) = delete;
