@@ -1,0 +1,300 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/io/LabelFile.h>
+#include <dynobj/label/LabelSession.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "../../core/tests/SyntheticScene.h"
+
+using namespace dynobj;
+using dynobj::test::Post;
+using dynobj::test::Scene;
+
+namespace {
+
+constexpr std::int64_t kT0 = 1700000000000000000;
+constexpr std::int64_t kDt = 100000000;  // 10 Hz
+
+/// Pixels whose point lies on the post at (px, py) with radius `rad` (above the floor's margin).
+std::vector<std::uint32_t> postPixels(const core::LidarFrame& f, double px, double py,
+                                      double rad = 0.3) {
+  std::vector<std::uint32_t> out;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      if (!f.isValid(r, c)) continue;
+      const cv::Vec3f& p = f.xyz(r, c);
+      if (std::abs(std::hypot(p[0] - px, p[1] - py) - rad) < 1e-3 && p[2] > -1.0f + 0.04f)
+        out.push_back(static_cast<std::uint32_t>(r * f.cols() + c));
+    }
+  return out;
+}
+
+/// Renders the scene with the sensor at `sensor_x` and the post(s) as given; the pixels of the
+/// first post in `truth` (in the sensor frame: post position minus the sensor's).
+core::LidarFrame frameWith(std::vector<Post> posts, double sensor_x, std::int64_t stamp,
+                           int cols = 360) {
+  Scene scene;
+  scene.posts = std::move(posts);
+  scene.sensor.translation() = Eigen::Vector3d(sensor_x, 0, 0);
+  return test::render(scene, test::smallSensor(16, cols), true, stamp);
+}
+
+Eigen::Isometry3d at(double x) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, 0, 0);
+  return T;
+}
+
+std::string tempDir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("dynobj_label_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+}  // namespace
+
+TEST(LabelSession, GrowFromAClickGivesExactlyTheObjectsPixels) {
+  label::MemorySweeps src;
+  src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 1.2, 0.3, 1.8}}, 0, kT0));
+  label::LabelSession s(src, {});
+  const auto f = s.sweep(0);
+  const auto truth = postPixels(f->frame, 4, 0);
+  ASSERT_GT(truth.size(), 10u);
+  const std::uint32_t click = truth[truth.size() / 2];
+  const auto grown = s.grow(0, static_cast<int>(click) / f->frame.cols(),
+                            static_cast<int>(click) % f->frame.cols());
+  EXPECT_EQ(grown, truth);
+}
+
+TEST(LabelSession, DistanceThresholdSeparatesOrJoinsCloseObjects) {
+  label::MemorySweeps src;  // post b stands behind post a's left edge: adjacent in the image,
+  src.add(frameWith({{4, 0, 0.3, 1.8}, {4.5, 0.5, 0.3, 1.8}}, 0, kT0));  // ~0.3 m apart in 3D
+  label::LabelSession s(src, {});
+  const auto f = s.sweep(0);
+  const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4.5, 0.5);
+  const int W = f->frame.cols();
+  const std::uint32_t click = a[a.size() / 2];
+  // At 4 m, epsilon = distance + 1.2 x 4 m x 1 deg = distance + 0.084 m.
+  EXPECT_EQ(s.grow(0, static_cast<int>(click) / W, static_cast<int>(click) % W, -1, 0.05), a);
+  std::vector<std::uint32_t> both(a);
+  both.insert(both.end(), b.begin(), b.end());
+  std::sort(both.begin(), both.end());
+  EXPECT_EQ(s.grow(0, static_cast<int>(click) / W, static_cast<int>(click) % W, -1, 0.4), both);
+}
+
+TEST(LabelSession, GrowingNeverEntersGroundOrAnotherObject) {
+  label::MemorySweeps src;
+  src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 0.85, 0.3, 1.8}}, 0, kT0));
+  label::LabelSession s(src, {});
+  const auto f = s.sweep(0);
+  const int W = f->frame.cols();
+  const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4, 0.85);
+  s.setObject(0, 7, b);  // post b is labelled already: growing from a stays on a
+  EXPECT_EQ(s.grow(0, static_cast<int>(a[0]) / W, static_cast<int>(a[0]) % W), a);
+  int floor_px = -1;  // a floor pixel far from the posts
+  for (int c = 0; c < W && floor_px < 0; c++)
+    if (f->frame.isValid(15, c) && f->ground(15, c) && std::abs(f->frame.xyz(15, c)[1]) > 2)
+      floor_px = 15 * W + c;
+  ASSERT_GE(floor_px, 0);
+  try {
+    s.grow(0, floor_px / W, floor_px % W);
+    FAIL() << "grew from the floor";
+  } catch (const label::LabelError& e) {
+    EXPECT_NE(std::string(e.what()).find("ground"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(s.grow(0, 16, 0), label::LabelError);  // outside the image
+  EXPECT_THROW(s.grow(3, 0, 0), label::LabelError);   // no such sweep
+}
+
+TEST(LabelSession, SetObjectTakesPixelsFromOtherObjectsAndTracksReview) {
+  label::MemorySweeps src;
+  src.add(frameWith({{4, 0, 0.3, 1.8}}, 0, kT0));
+  label::LabelSession s(src, {});
+  s.setObject(0, 1, {5, 6, 7});
+  s.setObject(0, 2, {7, 8}, label::LabelState::proposed);
+  ASSERT_NE(s.object(0, 1), nullptr);
+  EXPECT_EQ(s.object(0, 1)->pixels, (std::vector<std::uint32_t>{5, 6}));
+  EXPECT_EQ(s.object(0, 2)->pixels, (std::vector<std::uint32_t>{7, 8}));
+  EXPECT_FALSE(s.labels(0).reviewed);
+  s.setReviewed(0, true);
+  EXPECT_EQ(s.object(0, 2)->state, label::LabelState::confirmed);
+  EXPECT_EQ(s.reviewedCount(), 1u);
+  s.setObject(0, 1, {});  // erase
+  EXPECT_EQ(s.object(0, 1), nullptr);
+  EXPECT_THROW(s.setObject(0, 3, {16u * 360u}), label::LabelError);
+  EXPECT_THROW(s.setObject(0, 0, {1}), label::LabelError);
+}
+
+TEST(LabelSession, PropagationFollowsAWalkerWithOdometryAndVelocity) {
+  // The sensor drives +x at 2 m/s, the walker walks +y at 1.5 m/s (0.15 m per sweep).
+  label::MemorySweeps src;
+  for (int k = 0; k < 4; k++)
+    src.add(frameWith({{6, 0.15 * k, 0.3, 1.8}, {6, -2.5, 0.3, 1.8}}, 0.2 * k, kT0 + k * kDt),
+            at(0.2 * k));
+  label::LabelSession s(src, {});
+  const int W = s.cols();
+  const auto truth0 = postPixels(s.sweep(0)->frame, 6, 0);
+  const auto grown = s.grow(0, static_cast<int>(truth0[0]) / W, static_cast<int>(truth0[0]) % W);
+  ASSERT_EQ(grown, truth0);
+  const int id = s.newObject("pedestrian");
+  s.setObject(0, id, grown);
+  for (int k = 0; k < 3; k++) {
+    const label::Propagation p = s.propagate(static_cast<std::size_t>(k), id);
+    SCOPED_TRACE(k);
+    ASSERT_TRUE(p.found);
+    EXPECT_EQ(p.ego_motion, "odometry");
+    const auto& f = s.sweep(static_cast<std::size_t>(k + 1))->frame;
+    const auto truth = postPixels(f, 6 - 0.2 * (k + 1), 0.15 * (k + 1));
+    ASSERT_NE(s.object(static_cast<std::size_t>(k + 1), id), nullptr);
+    EXPECT_EQ(s.object(static_cast<std::size_t>(k + 1), id)->pixels, truth);
+    EXPECT_EQ(s.object(static_cast<std::size_t>(k + 1), id)->state, label::LabelState::proposed);
+    EXPECT_FALSE(s.labels(static_cast<std::size_t>(k + 1)).reviewed);
+    if (k > 0) {  // the velocity comes from the previous sweep's label (the visible surface's
+                  // centroid, which shifts a little as the view turns)
+      EXPECT_NEAR(p.velocity.y(), 1.5, 0.3);
+      EXPECT_NEAR(p.velocity.x(), 0.0, 0.3);
+    }
+  }
+  // A confirmed label in the next sweep is kept as it is.
+  s.setObject(2, id, {1, 2, 3});
+  const auto kept = s.propagate(1, id);
+  EXPECT_TRUE(kept.kept);
+  EXPECT_EQ(s.object(2, id)->pixels, (std::vector<std::uint32_t>{1, 2, 3}));
+}
+
+TEST(LabelSession, PropagationReportsALostObject) {
+  label::MemorySweeps src;
+  src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0), at(0));
+  src.add(frameWith({}, 0, kT0 + kDt), at(0));  // the walker is gone
+  label::LabelSession s(src, {});
+  s.setObject(0, 1, postPixels(s.sweep(0)->frame, 6, 0));
+  const auto p = s.propagate(0, 1);
+  EXPECT_FALSE(p.found);
+  EXPECT_EQ(s.object(1, 1), nullptr);
+  EXPECT_THROW(s.propagate(1, 1), label::LabelError);  // last sweep
+  EXPECT_THROW(s.propagate(0, 9), label::LabelError);  // unknown object
+}
+
+TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
+  label::MemorySweeps src;
+  for (int k = 0; k < 3; k++)
+    src.add(frameWith({{6, 0.15 * k, 0.3, 1.8}}, 0, kT0 + k * kDt), at(0));
+  const std::string dir = tempDir("save");
+  const std::string base = dir + "/walk";
+  std::vector<std::uint32_t> px0;
+  {
+    label::LabelSession s(src, {});
+    px0 = postPixels(s.sweep(0)->frame, 6, 0);
+    const int walker = s.newObject("pedestrian", true);
+    const int parked = s.newObject("car", false);
+    s.setObject(0, walker, px0);
+    s.setObject(0, parked, {0, 1});
+    s.setReviewed(0, true);
+    ASSERT_TRUE(s.propagate(0, walker).found);  // sweep 1: a proposal, unreviewed
+    s.save(base, "walk.rawlog");
+  }
+  for (const auto& f : label::LabelSession::outputFiles(base))
+    EXPECT_TRUE(std::filesystem::exists(f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(base + ".labels.partial"));
+
+  const io::LabelFile dyn = io::LabelFile::read(base + ".labels");
+  ASSERT_EQ(dyn.sweeps.size(), 3u);
+  EXPECT_TRUE(dyn.has_review);
+  EXPECT_EQ(dyn.reviewed, (std::vector<std::uint8_t>{1, 0, 0}));
+  EXPECT_EQ(dyn.sweeps[0].pixels, px0);  // the parked car is not moving: not in the label file
+  EXPECT_EQ(dyn.sweeps[0].timestamp_ns, kT0);
+  EXPECT_EQ(dyn.unreviewedSweeps(), (std::vector<std::size_t>{1, 2}));
+  try {
+    dyn.requireReviewed(base + ".labels");
+    FAIL();
+  } catch (const io::LabelFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("2 of 3 sweeps were not reviewed"), std::string::npos)
+        << e.what();
+  }
+  const io::LabelFile inst = io::LabelFile::read(base + ".instances");
+  EXPECT_TRUE(inst.instances);
+  EXPECT_EQ(inst.sweeps[0].pixels.size(), px0.size() + 2);
+  EXPECT_EQ(inst.sweeps[0].pixels[0], 0u);
+  EXPECT_EQ(inst.sweeps[0].ids[0], 2);
+
+  label::LabelSession r(src, {});
+  r.load(base);
+  EXPECT_EQ(r.reviewedCount(), 1u);
+  ASSERT_NE(r.object(0, 1), nullptr);
+  EXPECT_EQ(r.object(0, 1)->pixels, px0);
+  EXPECT_EQ(r.object(0, 1)->state, label::LabelState::confirmed);
+  ASSERT_NE(r.object(1, 1), nullptr);
+  EXPECT_EQ(r.object(1, 1)->state, label::LabelState::proposed);
+  EXPECT_EQ(r.objects().at(2).cls, "car");
+  EXPECT_FALSE(r.objects().at(2).moving);
+  EXPECT_EQ(r.newObject(), 3);  // ids continue after the saved ones
+}
+
+TEST(LabelSession, ResumingLabelsOfAnotherSensorOrRecordingIsRefused) {
+  label::MemorySweeps src;
+  src.add(frameWith({}, 0, kT0));
+  src.add(frameWith({}, 0, kT0 + kDt));
+  const std::string base = tempDir("other") + "/x";
+  label::LabelSession(src, {}).save(base);
+
+  label::MemorySweeps narrow;  // another sensor mode: 180 columns
+  narrow.add(frameWith({}, 0, kT0, 180));
+  narrow.add(frameWith({}, 0, kT0 + kDt, 180));
+  label::LabelSession s(narrow, {});
+  try {
+    s.load(base);
+    FAIL();
+  } catch (const label::LabelError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("16x360"), std::string::npos) << m;
+    EXPECT_NE(m.find("16x180"), std::string::npos) << m;
+  }
+  EXPECT_THROW(s.loadPrelabels(base + ".labels"), label::LabelError);
+
+  label::MemorySweeps later;  // the same sensor, other times
+  later.add(frameWith({}, 0, kT0 + 5 * kDt));
+  later.add(frameWith({}, 0, kT0 + 6 * kDt));
+  label::LabelSession l(later, {});
+  EXPECT_THROW(l.load(base), label::LabelError);
+  EXPECT_THROW(l.load(base + "-missing"), label::LabelError);
+}
+
+TEST(LabelSession, AFailedSaveKeepsEverythingAndLeavesNoFile) {
+  label::MemorySweeps src;
+  src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0));
+  label::LabelSession s(src, {});
+  s.setObject(0, 1, {3, 4});
+  const std::string dir = tempDir("unwritable");
+  { std::ofstream(dir + "/file") << "x"; }
+  const std::string bad = dir + "/file/labels";  // a file where a folder should be
+  EXPECT_THROW(s.save(bad), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(bad + ".labels"));
+  EXPECT_EQ(s.object(0, 1)->pixels, (std::vector<std::uint32_t>{3, 4}));
+  s.save(dir + "/ok");
+  EXPECT_EQ(io::LabelFile::read(dir + "/ok.instances").sweeps[0].pixels,
+            (std::vector<std::uint32_t>{3, 4}));
+}
+
+TEST(LabelSession, DetectorOutputBecomesPrelabelsPerConnectedGroup) {
+  label::MemorySweeps src;
+  src.add(frameWith({}, 0, kT0));
+  src.add(frameWith({}, 0, kT0 + kDt));
+  const std::string dir = tempDir("pre");
+  {
+    io::LabelFileWriter w(dir + "/det.labels", 16, 360);
+    w.write(kT0, {0, 1, 100, 361});  // two groups: {0, 1, 361} and {100}
+    w.write(kT0 + kDt, {});
+    w.close();
+  }
+  label::LabelSession s(src, {});
+  EXPECT_EQ(s.loadPrelabels(dir + "/det.labels"), 2u);
+  ASSERT_EQ(s.labels(0).objects.size(), 2u);
+  EXPECT_EQ(s.labels(0).objects[0].pixels, (std::vector<std::uint32_t>{0, 1, 361}));
+  EXPECT_EQ(s.labels(0).objects[0].state, label::LabelState::prelabel);
+  EXPECT_EQ(s.labels(0).objects[1].pixels, (std::vector<std::uint32_t>{100}));
+  EXPECT_FALSE(s.labels(0).reviewed);
+}
