@@ -119,7 +119,7 @@ async function main() {
     for (;;) {
       const err = await evaluate("(() => { const e = document.getElementById('error'); return e && !e.hidden ? document.getElementById('error-text').textContent : ''; })()");
       if (err) fail(`the page shows an error while waiting for ${what}: ${err}`);
-      if (await evaluate(expr)) return;
+      if (await evaluate(`(() => { try { return !!(${expr}); } catch (e) { return false; } })()`)) return;  // the page may be (re)loading
       if (Date.now() - t0 > ms) fail(`timed out waiting for ${what}`);
       await sleep(50);
     }
@@ -168,6 +168,15 @@ async function main() {
   console.log('propagated: ' + await evaluate(`document.getElementById('notice').textContent`));
   await screenshot('label-propagated.png');
 
+  // Reloading the page loses nothing: the labels live in dynobj-label.
+  await cmd('Page.reload');
+  await waitFor(`document.body.dataset.ready === '1'`, 'the reloaded page');
+  await idle(K0 + 1);
+  const after = await evaluate(`window.dynobjLabel.labels.objects.map((o) => o.id + ':' + o.state).join(',')`);
+  if (after !== `${id}:proposed`) fail(`after a reload sweep ${K0 + 2} holds '${after}', expected '${id}:proposed'`);
+  await key(']', 'BracketRight', 221, ']');  // select the object again (the page forgot it)
+  await waitFor(`window.dynobjLabel.current === ${id}`, 'the object selected');
+
   // Review sweep K0 .. K0 + 10: back to the first, then Enter on each (the page moves on).
   await key('ArrowLeft', 'ArrowLeft', 37);
   await idle(K0);
@@ -185,6 +194,24 @@ async function main() {
   const code = await new Promise((r) => app.on('exit', r));
   if (code !== 0) fail('dynobj-label exited with ' + code);
   fs.rmSync(profile, {recursive: true, force: true});
+
+  // Started again on the same output, it resumes the session.
+  const again = spawn(path.join(args.bin, 'dynobj-label'), ['-i', args.sample + '.rawlog', '-o', base, '--port', '0'],
+                      {stdio: ['ignore', 'pipe', 'pipe']});
+  children.push(again);
+  let againErr = '';
+  again.stderr.on('data', (d) => { againErr += d; });
+  const url2 = await new Promise((resolve) => {
+    let out = '';
+    again.stdout.on('data', (d) => { out += d; const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(out); if (m) resolve(m[1]); });
+    again.on('exit', () => resolve(null));
+  });
+  if (!url2) fail('dynobj-label did not start again: ' + againErr);
+  const info = await fetch(url2 + 'api/info').then((r) => r.json());
+  again.kill('SIGINT');
+  await new Promise((r) => again.on('exit', r));
+  if (info.reviewed !== STEPS + 1) fail(`resumed session has ${info.reviewed} reviewed sweeps, expected ${STEPS + 1}`);
+  console.log('resumed: ' + againErr.split('\n').find((l) => l.includes('resumed')));
 
   // ---- the saved labels against the ground truth ----
   const saved = readLabels(base + '.instances');

@@ -138,6 +138,7 @@ std::string formatSweepRanges(const std::vector<std::uint8_t>& flags) {
 std::vector<std::uint8_t> parseSweepRanges(const std::string& text, std::size_t n) {
   std::vector<std::uint8_t> flags(n, 0);
   if (text == "none") return flags;
+  if (text.empty()) throw std::invalid_argument("empty list (write 'none' for no sweep)");
   std::size_t pos = 0;
   const auto number = [&](std::size_t& v) {
     const std::size_t start = pos;
@@ -163,6 +164,8 @@ std::vector<std::uint8_t> parseSweepRanges(const std::string& text, std::size_t 
     for (std::size_t k = a; k <= b; k++) flags[k] = 1;
     if (pos < text.size() && text[pos++] != ',')
       throw std::invalid_argument("expected ',' between ranges");
+    if (pos == text.size() && text.back() == ',')
+      throw std::invalid_argument("the list ends with ','");
   }
   return flags;
 }

@@ -150,6 +150,7 @@ TEST(LabelFile, SweepRangesParseStrictly) {
   EXPECT_THROW(parseSweepRanges("3-1", 5), std::invalid_argument);
   EXPECT_THROW(parseSweepRanges("1;2", 5), std::invalid_argument);
   EXPECT_THROW(parseSweepRanges("", 5), std::invalid_argument);
+  EXPECT_THROW(parseSweepRanges("1,", 5), std::invalid_argument);
   const auto p = temp(".badreview.labels");
   std::ofstream(p) << "# dynobj-labels v1 rows=1 cols=1\n# reviewed 0-3\n1 0\n";
   try {

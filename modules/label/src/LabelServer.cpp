@@ -26,6 +26,7 @@ struct LabelServer::Impl {
   std::string save_error;
   std::string saved_at;
   std::atomic<bool> running{false};
+  std::atomic<bool> stopping{false}, run_entered{false}, run_done{false};
   std::mutex wake_mutex;
   std::condition_variable wake;
 
@@ -266,6 +267,11 @@ int LabelServer::bind() {
 }
 
 void LabelServer::run() {
+  impl_->run_entered = true;
+  if (impl_->stopping) {
+    impl_->run_done = true;
+    return;
+  }
   impl_->running = true;
   std::thread autosave([this] {
     const auto period = std::chrono::duration<double>(impl_->opts.autosave_s);
@@ -284,11 +290,18 @@ void LabelServer::run() {
   impl_->running = false;
   impl_->wake.notify_all();
   autosave.join();
+  impl_->run_done = true;
 }
 
 void LabelServer::stop() {
+  impl_->stopping = true;
   impl_->running = false;
   impl_->wake.notify_all();
+  // run() may be between its check of `stopping` and httplib's loop: wait until it listens (then
+  // stop it) or has returned, so that a stop() right after the start is never lost.
+  if (!impl_->run_entered) return;
+  while (!impl_->run_done && !impl_->http.is_running())
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   if (impl_->http.is_running()) impl_->http.stop();
 }
 

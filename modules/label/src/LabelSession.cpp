@@ -31,6 +31,30 @@ Eigen::Vector3d centroidOf(const core::LidarFrame& f, const std::vector<std::uin
   return c / static_cast<double>(pixels.size());
 }
 
+/// The rows where an object stands on the floor are ground for the segmenter (within a few cm of
+/// the ground height), so growing stops above them. Adds, column by column downwards, the ground
+/// pixels right below an object pixel whose point continues it (the grower's distance and depth
+/// tests): a foot continues the leg above it, while the floor below a foot is seen in front of
+/// the object, much nearer, and the floor beside it is in no object pixel's column.
+void addFeet(const core::LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
+             const cv::Mat_<std::uint8_t>& others, const core::RegionGrowingParams& gp,
+             cv::Mat_<std::uint8_t>& mask) {
+  const double gap_v = f.sensor.fovSpan() / f.rows();
+  for (int c = 0; c < f.cols(); c++)
+    for (int r = 0; r + 1 < f.rows(); r++) {
+      if (!mask(r, c) || mask(r + 1, c) || !f.isValid(r + 1, c) || !ground(r + 1, c) ||
+          others(r + 1, c))
+        continue;
+      const cv::Vec3f &p = f.xyz(r, c), &q = f.xyz(r + 1, c);
+      const double rng = f.range(r, c);
+      const double eps = gp.distance + gp.range_factor * rng * gap_v;
+      const cv::Vec3f d = q - p;
+      if (static_cast<double>(d.dot(d)) > eps * eps) continue;
+      if (std::abs(f.range(r + 1, c) - rng) > gp.distance + gp.depth_factor * rng) continue;
+      mask(r + 1, c) = 255;  // and on down the column (r + 1 is visited next)
+    }
+}
+
 }  // namespace
 
 void LabelParams::visit(core::ParamVisitor& v) {
@@ -38,6 +62,7 @@ void LabelParams::visit(core::ParamVisitor& v) {
   v.value("max_extent", max_extent);
   v.value("seed_distance", seed_distance);
   v.value("cache_sweeps", cache_sweeps);
+  v.value("feet", feet);
 }
 
 void LabelParams::validate() const {
@@ -110,9 +135,8 @@ std::shared_ptr<const LoadedSweep> LabelSession::sweep(std::size_t k) {
   return s;
 }
 
-cv::Mat_<std::uint8_t> LabelSession::blocked(std::size_t k, int except_id,
-                                             const LoadedSweep& s) const {
-  cv::Mat_<std::uint8_t> b = s.ground.clone();
+cv::Mat_<std::uint8_t> LabelSession::others(std::size_t k, int except_id) const {
+  cv::Mat_<std::uint8_t> b(rows_, cols_, std::uint8_t{0});
   for (const auto& o : labels_[k].objects) {
     if (o.id == except_id) continue;
     for (std::uint32_t px : o.pixels) b(static_cast<int>(px) / cols_, static_cast<int>(px) % cols_) = 255;
@@ -126,7 +150,8 @@ std::vector<std::uint32_t> LabelSession::grow(std::size_t k, int row, int col, i
   if (row < 0 || row >= rows_ || col < 0 || col >= cols_)
     throw LabelError("pixel (" + std::to_string(row) + ", " + std::to_string(col) +
                      ") is outside the " + sizeText(rows_, cols_) + " image");
-  const cv::Mat_<std::uint8_t> block = blocked(k, id, *s);
+  const cv::Mat_<std::uint8_t> other = others(k, id);
+  const cv::Mat_<std::uint8_t> block = cv::max(other, s->ground);
   int best = -1, best_d = 1 << 30;
   for (int dr = -1; dr <= 1; dr++)
     for (int dc = -3; dc <= 3; dc++) {
@@ -153,6 +178,7 @@ std::vector<std::uint32_t> LabelSession::grow(std::size_t k, int row, int col, i
   cv::Mat_<std::uint8_t> mask;
   cv::Mat_<int> owner;
   grower.grow(s->frame, block, {{best}}, mask, owner);
+  if (p_.feet) addFeet(s->frame, s->ground, other, gp, mask);
   return io::pixelsOfMask(mask);
 }
 
@@ -277,7 +303,8 @@ Propagation LabelSession::propagate(std::size_t k, int id) {
   const double dt = static_cast<double>(timestamp(k + 1) - timestamp(k)) * 1e-9;
   const Eigen::Vector3d shift = out.velocity * dt;
   const auto b = sweep(k + 1);
-  const cv::Mat_<std::uint8_t> block = blocked(k + 1, id, *b);
+  const cv::Mat_<std::uint8_t> other = others(k + 1, id);
+  const cv::Mat_<std::uint8_t> block = cv::max(other, b->ground);
   const core::SphericalProjection proj(b->frame.sensor);
   std::vector<int> seeds;
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(rows_ * cols_), 0);
@@ -310,6 +337,7 @@ Propagation LabelSession::propagate(std::size_t k, int id) {
   cv::Mat_<std::uint8_t> mask;
   cv::Mat_<int> owner;
   grower.grow(b->frame, block, {seeds}, mask, owner);
+  if (p_.feet) addFeet(b->frame, b->ground, other, gp, mask);
   std::vector<std::uint32_t> grown = io::pixelsOfMask(mask);
   out.found = !grown.empty();
   out.pixels = grown.size();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/label/LabelSession.h>
+#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/RawlogIndex.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,15 +20,16 @@ namespace {
 constexpr std::int64_t kT0 = 1700000000000000000;
 constexpr std::int64_t kDt = 100000000;  // 10 Hz
 
-/// Pixels whose point lies on the post at (px, py) with radius `rad` (above the floor's margin).
+/// Pixels whose point lies on the post at (px, py) with radius `rad`; without `base`, not its
+/// last 4 cm (which the ground segmenter takes for floor).
 std::vector<std::uint32_t> postPixels(const core::LidarFrame& f, double px, double py,
-                                      double rad = 0.3) {
+                                      double rad = 0.3, bool base = false) {
   std::vector<std::uint32_t> out;
   for (int r = 0; r < f.rows(); r++)
     for (int c = 0; c < f.cols(); c++) {
       if (!f.isValid(r, c)) continue;
       const cv::Vec3f& p = f.xyz(r, c);
-      if (std::abs(std::hypot(p[0] - px, p[1] - py) - rad) < 1e-3 && p[2] > -1.0f + 0.04f)
+      if (std::abs(std::hypot(p[0] - px, p[1] - py) - rad) < 1e-3 && (base || p[2] > -0.96f))
         out.push_back(static_cast<std::uint32_t>(r * f.cols() + c));
     }
   return out;
@@ -42,6 +45,18 @@ core::LidarFrame frameWith(std::vector<Post> posts, double sensor_x, std::int64_
   return test::render(scene, test::smallSensor(16, cols), true, stamp);
 }
 
+/// "+p" for pixels only in `got`, "-p" for pixels only in `want` (row,col): a readable failure.
+std::string diff(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& want,
+                 int W = 360) {
+  std::string out;
+  std::set<std::uint32_t> g(got.begin(), got.end()), w(want.begin(), want.end());
+  for (auto p : g)
+    if (!w.count(p)) out += " +" + std::to_string(p / W) + "," + std::to_string(p % W);
+  for (auto p : w)
+    if (!g.count(p)) out += " -" + std::to_string(p / W) + "," + std::to_string(p % W);
+  return out;
+}
+
 Eigen::Isometry3d at(double x) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(x, 0, 0);
@@ -55,25 +70,32 @@ std::string tempDir(const std::string& name) {
   return d.string();
 }
 
+/// The session's parameters without the feet rule: growing exactly as the detector grows.
+label::LabelParams noFeet() {
+  label::LabelParams p;
+  p.feet = false;
+  return p;
+}
+
 }  // namespace
 
 TEST(LabelSession, GrowFromAClickGivesExactlyTheObjectsPixels) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 1.2, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   const auto f = s.sweep(0);
   const auto truth = postPixels(f->frame, 4, 0);
   ASSERT_GT(truth.size(), 10u);
   const std::uint32_t click = truth[truth.size() / 2];
   const auto grown = s.grow(0, static_cast<int>(click) / f->frame.cols(),
                             static_cast<int>(click) % f->frame.cols());
-  EXPECT_EQ(grown, truth);
+  EXPECT_EQ(grown, truth) << diff(grown, truth);
 }
 
 TEST(LabelSession, DistanceThresholdSeparatesOrJoinsCloseObjects) {
   label::MemorySweeps src;  // post b stands behind post a's left edge: adjacent in the image,
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4.5, 0.5, 0.3, 1.8}}, 0, kT0));  // ~0.3 m apart in 3D
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   const auto f = s.sweep(0);
   const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4.5, 0.5);
   const int W = f->frame.cols();
@@ -89,7 +111,7 @@ TEST(LabelSession, DistanceThresholdSeparatesOrJoinsCloseObjects) {
 TEST(LabelSession, GrowingNeverEntersGroundOrAnotherObject) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 0.85, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   const auto f = s.sweep(0);
   const int W = f->frame.cols();
   const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4, 0.85);
@@ -113,7 +135,7 @@ TEST(LabelSession, GrowingNeverEntersGroundOrAnotherObject) {
 TEST(LabelSession, SetObjectTakesPixelsFromOtherObjectsAndTracksReview) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   s.setObject(0, 1, {5, 6, 7});
   s.setObject(0, 2, {7, 8}, label::LabelState::proposed);
   ASSERT_NE(s.object(0, 1), nullptr);
@@ -135,7 +157,7 @@ TEST(LabelSession, PropagationFollowsAWalkerWithOdometryAndVelocity) {
   for (int k = 0; k < 4; k++)
     src.add(frameWith({{6, 0.15 * k, 0.3, 1.8}, {6, -2.5, 0.3, 1.8}}, 0.2 * k, kT0 + k * kDt),
             at(0.2 * k));
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   const int W = s.cols();
   const auto truth0 = postPixels(s.sweep(0)->frame, 6, 0);
   const auto grown = s.grow(0, static_cast<int>(truth0[0]) / W, static_cast<int>(truth0[0]) % W);
@@ -150,7 +172,8 @@ TEST(LabelSession, PropagationFollowsAWalkerWithOdometryAndVelocity) {
     const auto& f = s.sweep(static_cast<std::size_t>(k + 1))->frame;
     const auto truth = postPixels(f, 6 - 0.2 * (k + 1), 0.15 * (k + 1));
     ASSERT_NE(s.object(static_cast<std::size_t>(k + 1), id), nullptr);
-    EXPECT_EQ(s.object(static_cast<std::size_t>(k + 1), id)->pixels, truth);
+    EXPECT_EQ(s.object(static_cast<std::size_t>(k + 1), id)->pixels, truth)
+        << diff(s.object(static_cast<std::size_t>(k + 1), id)->pixels, truth);
     EXPECT_EQ(s.object(static_cast<std::size_t>(k + 1), id)->state, label::LabelState::proposed);
     EXPECT_FALSE(s.labels(static_cast<std::size_t>(k + 1)).reviewed);
     if (k > 0) {  // the velocity comes from the previous sweep's label (the visible surface's
@@ -170,7 +193,7 @@ TEST(LabelSession, PropagationReportsALostObject) {
   label::MemorySweeps src;
   src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0), at(0));
   src.add(frameWith({}, 0, kT0 + kDt), at(0));  // the walker is gone
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   s.setObject(0, 1, postPixels(s.sweep(0)->frame, 6, 0));
   const auto p = s.propagate(0, 1);
   EXPECT_FALSE(p.found);
@@ -187,7 +210,7 @@ TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
   const std::string base = dir + "/walk";
   std::vector<std::uint32_t> px0;
   {
-    label::LabelSession s(src, {});
+    label::LabelSession s(src, noFeet());
     px0 = postPixels(s.sweep(0)->frame, 6, 0);
     const int walker = s.newObject("pedestrian", true);
     const int parked = s.newObject("car", false);
@@ -266,7 +289,7 @@ TEST(LabelSession, ResumingLabelsOfAnotherSensorOrRecordingIsRefused) {
 TEST(LabelSession, AFailedSaveKeepsEverythingAndLeavesNoFile) {
   label::MemorySweeps src;
   src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   s.setObject(0, 1, {3, 4});
   const std::string dir = tempDir("unwritable");
   { std::ofstream(dir + "/file") << "x"; }
@@ -290,11 +313,72 @@ TEST(LabelSession, DetectorOutputBecomesPrelabelsPerConnectedGroup) {
     w.write(kT0 + kDt, {});
     w.close();
   }
-  label::LabelSession s(src, {});
+  label::LabelSession s(src, noFeet());
   EXPECT_EQ(s.loadPrelabels(dir + "/det.labels"), 2u);
   ASSERT_EQ(s.labels(0).objects.size(), 2u);
   EXPECT_EQ(s.labels(0).objects[0].pixels, (std::vector<std::uint32_t>{0, 1, 361}));
   EXPECT_EQ(s.labels(0).objects[0].state, label::LabelState::prelabel);
   EXPECT_EQ(s.labels(0).objects[1].pixels, (std::vector<std::uint32_t>{100}));
   EXPECT_FALSE(s.labels(0).reviewed);
+}
+
+TEST(RawlogSweeps, ReadsTheSampleInAnyOrderLikeTheSequentialReader) {
+  const std::string sample = std::string(DYNOBJ_SOURCE_DIR) + "/rawlogs/hall-small/hall-small";
+  label::RawlogSweeps sweeps(sample + ".rawlog", mrptio::ObservationConverter(), "");
+  ASSERT_EQ(sweeps.size(), 40u);
+  EXPECT_EQ(sweeps.sensorLabel(), "LIDAR");
+  const io::LabelFile truth = io::LabelFile::read(sample + ".gt.labels");
+  for (std::size_t k = 0; k < 40; k++) EXPECT_EQ(sweeps.timestamp(k), truth.sweeps[k].timestamp_ns);
+  // Sequential frames as every other tool reads them.
+  mrptio::RawlogFrameSource seq(sample + ".rawlog", mrptio::ObservationConverter(), {});
+  std::vector<core::LidarFrame> frames;
+  mrptio::Frame f;
+  while (seq.next(f)) {  // deep copies: the source reuses its buffers
+    core::LidarFrame c;
+    c.timestamp_ns = f.frame.timestamp_ns;
+    c.range = f.frame.range.clone();
+    c.intensity = f.frame.intensity.clone();
+    frames.push_back(c);
+  }
+  ASSERT_EQ(frames.size(), 40u);
+  for (std::size_t k : {39u, 0u, 17u, 18u, 3u}) {  // backwards and forwards in a gzip file
+    core::LidarFrame got;
+    std::optional<Eigen::Isometry3d> pose;
+    sweeps.load(k, got, pose);
+    SCOPED_TRACE(k);
+    EXPECT_EQ(got.timestamp_ns, frames[k].timestamp_ns);
+    EXPECT_EQ(cv::norm(got.range, frames[k].range, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(got.intensity, frames[k].intensity, cv::NORM_INF), 0.0);
+    EXPECT_TRUE(pose.has_value());  // the sample has odometry
+  }
+  EXPECT_THROW(label::RawlogSweeps(sample + ".missing", mrptio::ObservationConverter(), ""),
+               mrptio::RawlogError);
+  EXPECT_THROW(label::RawlogSweeps(sample + ".rawlog", mrptio::ObservationConverter(), "OTHER"),
+               mrptio::RawlogError);
+}
+
+TEST(LabelSession, TheFeetRuleAddsTheBaseBelowTheObjectOnly) {
+  label::MemorySweeps src;
+  src.add(frameWith({{4, 0, 0.3, 1.8}}, 0, kT0));
+  label::LabelSession with(src, {});  // feet on (the default)
+  label::LabelSession without(src, noFeet());
+  const auto& f = with.sweep(0)->frame;
+  const int W = f.cols();
+  const auto body = postPixels(f, 4, 0), all = postPixels(f, 4, 0, 0.3, true);
+  ASSERT_GT(all.size(), body.size());  // the post's base is ground for the segmenter
+  const std::uint32_t click = body[body.size() / 2];
+  const auto a = without.grow(0, static_cast<int>(click) / W, static_cast<int>(click) % W);
+  EXPECT_EQ(a, body) << diff(a, body);
+  const auto b = with.grow(0, static_cast<int>(click) / W, static_cast<int>(click) % W);
+  std::set<std::uint32_t> grown(b.begin(), b.end());
+  for (std::uint32_t p : all) EXPECT_TRUE(grown.count(p)) << "base pixel " << p / W << "," << p % W;
+  // Anything else is a ground pixel right below a pixel of the grown object (the floor where it
+  // meets the post, which a 2-degree beam cannot tell from the post's base).
+  const auto ground = with.sweep(0)->ground;
+  for (std::uint32_t p : b) {
+    if (std::binary_search(all.begin(), all.end(), p)) continue;
+    const int r = static_cast<int>(p) / W, c = static_cast<int>(p) % W;
+    EXPECT_TRUE(ground(r, c) && r > 0 && grown.count(static_cast<std::uint32_t>((r - 1) * W + c)))
+        << r << "," << c;
+  }
 }

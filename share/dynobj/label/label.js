@@ -102,7 +102,7 @@ function draw() {
   for (let i = 0; i < W * H; i++) {
     const v = d.inten[i];
     px[4 * i] = v; px[4 * i + 1] = v; px[4 * i + 2] = v; px[4 * i + 3] = 255;
-    if (d.ground[i]) { px[4 * i] = v * 0.6; px[4 * i + 1] = v * 0.6 + 40; px[4 * i + 2] = v * 0.5; }
+    if (d.ground[i]) { px[4 * i] = v * 0.75; px[4 * i + 1] = v * 0.75 + 30; px[4 * i + 2] = v * 0.7; }
   }
   const paint = (i, c, a) => {
     px[4 * i] = px[4 * i] * (1 - a) + c[0] * a;
@@ -137,26 +137,39 @@ function draw() {
 function drawTopDown() {
   const cv = $('topdown'), g = cv.getContext('2d'), d = S.data, W = S.cols, H = S.rows;
   g.fillStyle = '#000'; g.fillRect(0, 0, cv.width, cv.height);
-  // Scale: the 95th percentile of the horizontal distances fills the view.
-  const dist = [];
-  for (let i = 0; i < W * H; i += 7) if (d.x[i] || d.y[i]) dist.push(Math.hypot(d.x[i], d.y[i]));
-  dist.sort((a, b) => a - b);
-  const R = Math.max(5, dist.length ? dist[Math.floor(dist.length * 0.95)] : 20);
+  // Centred on the current object when it is in this sweep (8 m across), else on the sensor with
+  // the 95th percentile of the horizontal distances at the edge.
+  const cur = S.labels.objects.find((o) => o.id === S.current);
+  const focus = S.cand && S.cand.size ? [...S.cand] : (cur ? cur.pixels : []);
+  let ox = 0, oy = 0, R;
+  if (focus.length) {
+    for (const i of focus) { ox += d.x[i]; oy += d.y[i]; }
+    ox /= focus.length; oy /= focus.length; R = 4;
+  } else {
+    const dist = [];
+    for (let i = 0; i < W * H; i += 7) if (d.x[i] || d.y[i]) dist.push(Math.hypot(d.x[i], d.y[i]));
+    dist.sort((a, b) => a - b);
+    R = Math.max(5, dist.length ? dist[Math.floor(dist.length * 0.95)] : 20);
+  }
   const s = cv.width / 2 / R, cx = cv.width / 2, cy = cv.height / 2;
   const owner = new Int32Array(W * H);
   for (const o of S.labels.objects) for (const i of o.pixels) owner[i] = o.id;
-  const dot = (i, style, size) => {
-    g.fillStyle = style;
-    g.fillRect(cx - d.y[i] * s - size / 2, cy - d.x[i] * s - size / 2, size, size);  // +x up, +y left
+  const size = focus.length ? 3 : 1;
+  const dot = (i, style, sz) => {
+    g.fillStyle = style;  // +x up, +y left
+    g.fillRect(cx - (d.y[i] - oy) * s - sz / 2, cy - (d.x[i] - ox) * s - sz / 2, sz, sz);
   };
   for (let i = 0; i < W * H; i++) {
     if (!(d.x[i] || d.y[i] || d.z[i]) || owner[i]) continue;
-    dot(i, d.ground[i] ? '#2c4020' : '#8a8a8a', 1);
+    dot(i, d.ground[i] ? '#2c4020' : '#8a8a8a', size);
   }
-  for (let i = 0; i < W * H; i++) if (owner[i]) { const c = colour(owner[i]); dot(i, `rgb(${c})`, 3); }
-  if (S.cand) for (const i of S.cand) dot(i, '#00e5ff', 3);
-  g.fillStyle = '#fff'; g.beginPath(); g.moveTo(cx, cy - 7); g.lineTo(cx - 4, cy + 4); g.lineTo(cx + 4, cy + 4); g.fill();
-  g.fillStyle = '#999'; g.fillText(`top view, ${R.toFixed(0)} m to the edge, +x up`, 6, cv.height - 6);
+  for (let i = 0; i < W * H; i++) if (owner[i]) { const c = colour(owner[i]); dot(i, `rgb(${c})`, size + 2); }
+  if (S.cand) for (const i of S.cand) dot(i, '#00e5ff', size + 2);
+  const sx = cx + oy * s, sy = cy + ox * s;  // the sensor
+  g.fillStyle = '#fff'; g.beginPath(); g.moveTo(sx, sy - 7); g.lineTo(sx - 4, sy + 4); g.lineTo(sx + 4, sy + 4); g.fill();
+  g.fillStyle = '#999';
+  g.fillText(focus.length ? `top view around the ${S.cand && S.cand.size ? 'candidate' : 'object ' + cur.id}, ${2 * R} m across, +x up` :
+                   `top view, ${R.toFixed(0)} m to the edge, +x up`, 6, cv.height - 6);
 }
 
 function drawObjects() {
@@ -391,8 +404,8 @@ async function start() {
   $('file').textContent = S.info.input + ' → ' + S.info.output + '.labels';
   $('sweep').max = S.n - 1;
   $('distance').value = S.info.distance; $('extent').value = S.info.max_extent;
-  // Columns: at least 1 px, up to ~1500 px wide; rows stretched so the image is readable.
-  S.xs = Math.max(1, Math.floor(1500 / S.cols));
+  // Columns: at least 1 px, as wide as the window allows; rows stretched so the image is readable.
+  S.xs = Math.max(1, Math.floor((window.innerWidth - 40) / S.cols));
   S.ys = Math.max(S.xs, Math.round(320 / S.rows));
   const m = /k=(\d+)/.exec(location.hash);
   await loadSweep(m ? +m[1] : 0);

@@ -42,6 +42,8 @@ struct LabelParams : public core::StageParams {
   double seed_distance = 0.3;  ///< [m] propagation: a predicted point seeds the pixel whose point
                                ///< lies within this distance of it
   int cache_sweeps = 16;       ///< sweeps kept in memory (frame + ground mask)
+  bool feet = true;            ///< also take the ground pixels right below an object that
+                               ///< continue it (where it stands on the floor)
   // From the detector's INI (-c), not from [label]:
   core::RegionGrowingParams growing;  ///< the rest of the detector's region growing
   core::GroundParams ground;          ///< the detector's ground segmentation
@@ -152,7 +154,8 @@ class LabelSession {
  private:
   SweepLabels& mutableLabels(std::size_t k);
   Eigen::Isometry3d motion(std::size_t from, std::size_t to, std::string& source);
-  cv::Mat_<std::uint8_t> blocked(std::size_t k, int except_id, const LoadedSweep& s) const;
+  /// 255 on the pixels of sweep k's objects other than `except_id`.
+  cv::Mat_<std::uint8_t> others(std::size_t k, int except_id) const;
 
   SweepSource& source_;
   LabelParams p_;
