@@ -182,7 +182,8 @@ async function main() {
   await idle(K0);
   for (let k = K0; k <= K0 + STEPS; k++) {
     await key('Enter', 'Enter', 13, '\r');
-    await idle(Math.min(k + 1, truth.sweeps.length - 1));
+    if (k + 1 < truth.sweeps.length) await idle(k + 1);
+    else await waitFor(`document.body.dataset.busy === '0' && window.dynobjLabel.labels.reviewed`, 'the last sweep reviewed');
     if (k === K0 + 5) await screenshot('label-review.png');
   }
   await key('s', 'KeyS', 83, 's');
