@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
     }
     path.push_back(sweep.sensor_pose.translation());
     if (k == topview.getValue())
-      dynobj::core::writePng(out.getValue() + "/" + s.name + ".topview.png",
+      dynobj::io::writePng(out.getValue() + "/" + s.name + ".topview.png",
                              dynobj::sim::topView(sweep, path));
     if (tty)
       std::cerr << "\r[dynobj-sim] " << s.name << ": sweep " << (k + 1) << "/" << s.frames

@@ -9,64 +9,54 @@
 namespace dynobj::core {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+/// Stage timings [ms]: lap() returns the time since the previous lap (or construction).
+class StageClock {
+ public:
+  double lap() {
+    const auto now = Clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+  double total() const {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+  }
 
-double msSince(Clock::time_point& t) {
-  const auto now = Clock::now();
-  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
-  t = now;
-  return ms;
+ private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point start_ = Clock::now(), last_ = start_;
+};
+
+std::vector<Eigen::Vector3d> centroidsOf(const std::vector<Cluster>& clusters) {
+  std::vector<Eigen::Vector3d> c;
+  c.reserve(clusters.size());
+  for (const Cluster& k : clusters) c.push_back(k.centroid);
+  return c;
 }
 
 }  // namespace
 
-void DetectorParams::load(const ::mrpt::config::CConfigFileBase& c, const std::string& prefix) {
+void DetectorParams::load(const mrpt::config::CConfigFileBase& c, const std::string& prefix) {
   DetectorParams p = *this;  // all or nothing: *this changes only if every section is valid
-  auto section = [&](::mrpt::config::CLoadableOptions& stage, const std::string& name) {
+  p.forEachStage([&](const char* name, StageParams& stage) {
     try {
       stage.loadFromConfigFile(c, prefix + name);
     } catch (const ParameterError& e) {
       const std::string what = e.what();
       throw ParameterError(what.rfind("[", 0) == 0 ? what : "[" + prefix + name + "] " + what);
     }
-  };
-  section(p.foreground, "foreground");
-  p.exclude_ground_features =
-      readBool(c, prefix + "foreground", "exclude_ground", p.exclude_ground_features);
-  section(p.ground, "ground");
-  section(p.ego_motion, "ego_motion");
-  section(p.clustering, "clustering");
-  section(p.association, "association");
-  section(p.movement, "movement");
-  section(p.free_space, "free_space");
-  section(p.tracking, "tracking");
-  section(p.region_growing, "region_growing");
+  });
   *this = p;
 }
 
-void DetectorParams::save(::mrpt::config::CConfigFileBase& c, const std::string& prefix) const {
-  foreground.saveToConfigFile(c, prefix + "foreground");
-  c.write(prefix + "foreground", "exclude_ground", exclude_ground_features);
-  ground.saveToConfigFile(c, prefix + "ground");
-  ego_motion.saveToConfigFile(c, prefix + "ego_motion");
-  clustering.saveToConfigFile(c, prefix + "clustering");
-  association.saveToConfigFile(c, prefix + "association");
-  movement.saveToConfigFile(c, prefix + "movement");
-  free_space.saveToConfigFile(c, prefix + "free_space");
-  tracking.saveToConfigFile(c, prefix + "tracking");
-  region_growing.saveToConfigFile(c, prefix + "region_growing");
+void DetectorParams::save(mrpt::config::CConfigFileBase& c, const std::string& prefix) const {
+  forEachStage([&](const char* name, const StageParams& stage) {
+    stage.saveToConfigFile(c, prefix + name);
+  });
 }
 
 void DetectorParams::validate() const {
-  foreground.validate();
-  ground.validate();
-  ego_motion.validate();
-  clustering.validate();
-  association.validate();
-  movement.validate();
-  free_space.validate();
-  tracking.validate();
-  region_growing.validate();
+  forEachStage([](const char*, const StageParams& stage) { stage.validate(); });
 }
 
 DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
@@ -114,8 +104,49 @@ EgoMotion DynamicObjectDetector::egoMotion(const LidarFrame& frame,
 
 const DetectionResult& DynamicObjectDetector::process(
     const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external_motion) {
-  auto t = Clock::now();
-  const auto t0 = t;
+  StageClock clock;
+  const double dt = beginFrame(frame);  // seconds since the previous frame
+  DetectionResult& r = result_;
+
+  // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
+  ground_.segment(frame, ground_mask_);
+  r.timings.ground = clock.lap();
+
+  // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
+  const bool no_ground = params_.foreground.exclude_ground;
+  foreground_.extract(frame, no_ground ? ground_mask_ : cv::Mat_<std::uint8_t>(), r.features);
+  r.timings.foreground = clock.lap();
+
+  // III-B-1, Eq. (5): ego-motion between the previous frame and this one.
+  r.ego_motion = egoMotion(frame, external_motion);
+  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
+  r.timings.ego_motion = clock.lap();
+
+  // III-B-2, Eq. (6)-(7): clusters of the foreground points.
+  clusterer_.cluster(frame, r.features, clusters_);
+  r.timings.clustering = clock.lap();
+
+  // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association.
+  tracks_.predict(r.ego_motion.motion, dt);
+  tracks_.update(frame_index_, clusters_,
+                 associator_.associate(centroidsOf(clusters_), tracks_.predicted()));
+  r.timings.association = clock.lap();
+
+  // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window, outliers
+  // rejected; the clusters of dynamic tracks are the seeds.
+  const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
+  r.timings.movement = clock.lap();
+
+  // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
+  const std::vector<int> grown = grower_.grow(frame, ground_mask_, seeds, r.dynamic, owner_);
+  r.timings.region_growing = clock.lap();
+
+  endFrame(frame, grown);
+  r.timings.total = clock.total();
+  return r;
+}
+
+double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
   DetectionResult& r = result_;
   r.objects.clear();
   r.timestamp_ns = frame.timestamp_ns;
@@ -125,77 +156,38 @@ const DetectionResult& DynamicObjectDetector::process(
                         : 1.0 / frame.sensor.frequency;
   last_stamp_ = frame.timestamp_ns;
   if (prev_dynamic_.size() != frame.range.size()) prev_dynamic_.release();
+  r.dynamic.create(frame.range.size());
+  r.dynamic.setTo(0);
+  r.seeds.create(frame.range.size());
+  r.seeds.setTo(0);
+  owner_.create(frame.range.size());
+  owner_.setTo(-1);
+  return dt;
+}
 
-  // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
-  ground_.segment(frame, ground_mask_);
-  r.timings.ground = msSince(t);
-
-  // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
-  foreground_.extract(
-      frame, params_.exclude_ground_features ? ground_mask_ : cv::Mat_<std::uint8_t>(), r.features);
-  r.timings.foreground = msSince(t);
-
-  // III-B-1, Eq. (5): ego-motion between the previous frame and this one.
-  r.ego_motion = egoMotion(frame, external_motion);
-  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
-  r.timings.ego_motion = msSince(t);
-
-  // III-B-2, Eq. (6)-(7): clusters of the foreground points.
-  clusterer_.cluster(frame, r.features, clusters_);
-  r.timings.clustering = msSince(t);
-
-  // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association.
-  tracks_.predict(r.ego_motion.motion, dt);
-  std::vector<Eigen::Vector3d> centroids;
-  centroids.reserve(clusters_.size());
-  for (const Cluster& c : clusters_) centroids.push_back(c.centroid);
-  tracks_.update(frame_index_, clusters_, associator_.associate(centroids, tracks_.predicted()));
-  r.timings.association = msSince(t);
-
-  // III-C-1 and III-C-2, Eq. (14)-(23): movement over the sliding window, outliers rejected.
+std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFrame& frame,
+                                                                  double dt) {
   std::vector<std::vector<int>> seeds;
   seed_track_.clear();
   for (Track& tr : tracks_.tracks()) {
     if (tr.cluster < 0) continue;
     const Cluster& c = clusters_[static_cast<std::size_t>(tr.cluster)];
     MovementDecision d = movement_.analyse(tr.window, chain_, c, dt);
-    if (d.moving()) {  // beyond the paper: was the space it occupies now free at the window start?
-      const long past = std::max(chain_.oldest(), frame_index_ - params_.free_space.lookback);
-      const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(frame_index_ - past);
-      const FreeSpaceEvidence e =
-          free_space_.evidence(frame, frame_index_, c, past, chain_, shift);
-      // A long object exempted from Eq. (23) as a rigid mover (a car) must prove its motion: a
-      // background strip framed by moving occluders also "moves" rigidly, but no free space
-      // was ever seen where it is.
-      d.static_surface =
-          d.rigid ? !e.provesMotion(params_.free_space) : !e.supportsMotion(params_.free_space);
-    }
-    tracks_.decide(tr, d);
-    if (tr.dynamic) {
-      seeds.push_back(c.pixels);
-      seed_track_.push_back(tr.id);
-    }
+    free_space_.review(frame, frame_index_, c, chain_, dt, d);  // beyond the paper
+    tracks_.decide(tr, d);                                      // with hysteresis
+    if (!tr.dynamic) continue;
+    seeds.push_back(c.pixels);
+    seed_track_.push_back(tr.id);
+    for (int px : c.pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
-  r.timings.movement = msSince(t);
+  return seeds;
+}
 
-  // III-C-3, Eq. (24)-(25): region growing from the accepted clusters, stopped at the ground.
-  r.dynamic.create(frame.range.size());
-  r.dynamic.setTo(0);
-  r.seeds.create(frame.range.size());
-  r.seeds.setTo(0);
-  for (const auto& s : seeds)
-    for (int px : s) r.seeds(px / frame.cols(), px % frame.cols()) = 255;
-  owner_.create(frame.range.size());
-  owner_.setTo(-1);
-  const std::vector<int> grown = grower_.grow(frame, ground_mask_, seeds, r.dynamic, owner_);
-  r.timings.region_growing = msSince(t);
-
+void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
   free_space_.remember(frame_index_, frame);
-  ego_.dropPreviousOn(r.dynamic);
-  r.dynamic.copyTo(prev_dynamic_);
-  r.timings.total = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  return r;
+  ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
+  result_.dynamic.copyTo(prev_dynamic_);
 }
 
 void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::vector<int>& grown) {

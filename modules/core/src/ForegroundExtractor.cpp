@@ -34,6 +34,7 @@ void ForegroundParams::visit(ParamVisitor& v) {
   v.value("absolute", absolute);
   v.value("stretch_low", stretch_low);
   v.value("stretch_high", stretch_high);
+  v.value("exclude_ground", exclude_ground);
 }
 
 void ForegroundParams::validate() const {

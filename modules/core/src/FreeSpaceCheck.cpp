@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/FreeSpaceCheck.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynobj/core/Config.h"
@@ -110,6 +111,15 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
     tally(e, frame.range(r, c), expected, p_.margin + p_.range_factor * expected);
   }
   return e;
+}
+
+void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster& cluster,
+                            const FrameChain& chain, double dt, MovementDecision& d) const {
+  if (!d.moving()) return;
+  const long past = std::max(chain.oldest(), current - p_.lookback);
+  const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
+  const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift);
+  d.static_surface = d.rigid ? !e.provesMotion(p_) : !e.supportsMotion(p_);
 }
 
 }  // namespace dynobj::core

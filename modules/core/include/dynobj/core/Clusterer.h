@@ -57,7 +57,6 @@ class Clusterer {
 
  private:
   void clusterImage(const LidarFrame& frame, std::vector<int>& label);
-  void clusterKdTree(const LidarFrame& frame, std::vector<int>& label);
   void clusterPoints(const LidarFrame& frame, std::vector<int>& label);  ///< grid or kdtree
   void linkKdTree(std::vector<int>& parent);                             ///< union-find over pts_
   void linkGrid(std::vector<int>& parent);  ///< the same links, from a cell grid

@@ -24,10 +24,8 @@
 
 namespace dynobj::core {
 
-/// Every stage's parameters. INI layout: one section per stage, named
-/// <prefix>foreground, <prefix>ground, <prefix>ego_motion, <prefix>clustering,
-/// <prefix>association, <prefix>movement, <prefix>free_space, <prefix>tracking,
-/// <prefix>region_growing.
+/// Every stage's parameters, one INI section per stage: <prefix><name> for each (name, stage) of
+/// forEachStage(), the one list of the sections.
 struct DetectorParams {
   ForegroundParams foreground;
   GroundParams ground;
@@ -38,10 +36,28 @@ struct DetectorParams {
   FreeSpaceParams free_space;
   TrackingParams tracking;
   RegionGrowingParams region_growing;
-  bool exclude_ground_features = true;  ///< [foreground] no features on ground pixels
 
-  void load(const ::mrpt::config::CConfigFileBase& c, const std::string& prefix = "");
-  void save(::mrpt::config::CConfigFileBase& c, const std::string& prefix = "") const;
+  /// Calls f(section name, stage parameters) for every stage, in pipeline order.
+  template <class F>
+  void forEachStage(F&& f) {
+    f("foreground", foreground);
+    f("ground", ground);
+    f("ego_motion", ego_motion);
+    f("clustering", clustering);
+    f("association", association);
+    f("movement", movement);
+    f("free_space", free_space);
+    f("tracking", tracking);
+    f("region_growing", region_growing);
+  }
+  template <class F>
+  void forEachStage(F&& f) const {
+    const_cast<DetectorParams*>(this)->forEachStage(
+        [&](const char* name, const StageParams& stage) { f(name, stage); });
+  }
+
+  void load(const mrpt::config::CConfigFileBase& c, const std::string& prefix = "");
+  void save(mrpt::config::CConfigFileBase& c, const std::string& prefix = "") const;
   void validate() const;
 };
 
@@ -85,7 +101,14 @@ class DynamicObjectDetector {
   const DetectorParams& params() const { return params_; }
 
  private:
+  /// Frame index, result and buffers reset for `frame`; returns the seconds since the last frame.
+  double beginFrame(const LidarFrame& frame);
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
+  /// Decides every associated track (movement, free space, hysteresis); the clusters of the
+  /// dynamic ones, also marked in result_.seeds (their track ids in seed_track_).
+  std::vector<std::vector<int>> dynamicSeeds(const LidarFrame& frame, double dt);
+  /// Objects of the result, history for the next frame.
+  void endFrame(const LidarFrame& frame, const std::vector<int>& grown);
   void collectObjects(const LidarFrame& frame, const std::vector<int>& grown);
 
   DetectorParams params_;

@@ -22,6 +22,7 @@ struct ForegroundParams : public StageParams {
   bool absolute = true;  ///< |f - h| > theta (darker objects too); false = paper's f - h > theta
   double stretch_low = 1.0;    ///< percentile mapped to 32 (of 0..255)
   double stretch_high = 99.0;  ///< percentile mapped to 223
+  bool exclude_ground = true;  ///< no features on ground pixels (the detector applies it)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -15,6 +15,7 @@
 #include "dynobj/core/Clusterer.h"
 #include "dynobj/core/FrameChain.h"
 #include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/MovementAnalyzer.h"
 #include "dynobj/core/Params.h"
 #include "dynobj/core/SphericalProjection.h"
 
@@ -55,6 +56,14 @@ class FreeSpaceCheck {
   FreeSpaceEvidence evidence(const LidarFrame& frame, long current, const Cluster& cluster,
                              long past, const FrameChain& chain,
                              const std::optional<Eigen::Vector3d>& shift = std::nullopt) const;
+  /// The rule the detector applies to a cluster the movement stage calls moving (`d.moving()`):
+  /// sets `d.static_surface` when the space the cluster occupies was not free at the start of its
+  /// window (frame `current` - lookback, or the oldest the chain keeps). A rigid mover (a long
+  /// object exempted from Eq. 23) must prove its motion, since a background strip framed by moving
+  /// occluders also "moves" rigidly but no free space was ever seen where it is; other candidates
+  /// must only not contradict it. `dt`: seconds between frames (for the vacated-space fallback).
+  void review(const LidarFrame& frame, long current, const Cluster& cluster,
+              const FrameChain& chain, double dt, MovementDecision& d) const;
   const FreeSpaceParams& params() const { return p_; }
 
  private:
