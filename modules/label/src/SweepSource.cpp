@@ -30,7 +30,7 @@ RawlogSweeps::RawlogSweeps(const std::string& rawlog,
                            const std::string& sensor_label,
                            std::function<void(std::size_t, std::uint64_t)> progress)
     : index_(std::make_unique<mrptio::RawlogIndex>(
-          rawlog, converter, mrptio::RawlogIndex::Options{sensor_label, std::move(progress)})) {}
+          rawlog, converter, mrptio::RawlogIndex::Options{sensor_label, std::move(progress), 32ull << 20})) {}
 
 RawlogSweeps::~RawlogSweeps() = default;
 

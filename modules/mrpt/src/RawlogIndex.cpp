@@ -9,6 +9,9 @@
 #include <mrpt/serialization/CArchive.h>
 #include <zlib.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -20,34 +23,66 @@ namespace dynobj::mrptio {
 
 namespace mobs = mrpt::obs;
 
-/// A read-only MRPT stream over zlib's gzFile, which reads plain files too and can seek
-/// (CFileGZInputStream cannot).
+/// A read-only MRPT stream over a plain or gzip file that can seek both ways. gzip cannot be
+/// entered in the middle, so while reading forward it keeps a copy of the decompressor's state
+/// (zlib's inflateCopy: ~40 kB) every `every` bytes of output; a seek restarts from the
+/// nearest earlier copy, so it costs at most that much decompression (CFileGZInputStream
+/// cannot seek at all, and zlib's gzseek restarts backward seeks from the file's start).
 class RawlogIndex::Stream : public mrpt::io::CStream {
  public:
-  explicit Stream(const std::string& path) : path_(path) {
-    f_ = gzopen(path.c_str(), "rb");
-    if (!f_) throw RawlogError("cannot open rawlog '" + path + "'");
-    gzbuffer(f_, 1 << 18);
+  Stream(const std::string& path, std::uint64_t every)
+      : path_(path), in_(1 << 18), every_(std::max<std::uint64_t>(every, 1 << 16)) {
+    f_ = std::fopen(path.c_str(), "rb");
+    if (!f_) throw RawlogError("cannot open rawlog '" + path + "': " + std::strerror(errno));
+    unsigned char magic[2] = {0, 0};
+    gz_ = std::fread(magic, 1, 2, f_) == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+    std::fseek(f_, 0, SEEK_SET);
+    if (gz_) {
+      if (inflateInit2(&zs_, 16 + MAX_WBITS) != Z_OK)
+        throw RawlogError("rawlog '" + path + "': cannot start zlib");
+      checkpoint();
+    }
   }
   ~Stream() override {
-    if (f_) gzclose(f_);
+    if (gz_) inflateEnd(&zs_);
+    for (auto& c : cps_) inflateEnd(c.zs.get());
+    if (f_) std::fclose(f_);
   }
   Stream(const Stream&) = delete;
   Stream& operator=(const Stream&) = delete;
 
   size_t Read(void* buf, size_t n) override {
-    auto* out = static_cast<char*>(buf);
+    if (!gz_) {
+      const size_t got = std::fread(buf, 1, n, f_);
+      pos_ += got;
+      file_pos_ += got;
+      return got;
+    }
+    auto* out = static_cast<unsigned char*>(buf);
     size_t done = 0;
     while (done < n) {
-      const unsigned chunk = static_cast<unsigned>(std::min<size_t>(n - done, 1u << 30));
-      const int got = gzread(f_, out + done, chunk);
-      if (got < 0) {
-        int err = 0;
-        throw RawlogError("rawlog '" + path_ + "' is damaged (compressed data): " +
-                          gzerror(f_, &err));
+      if (zs_.avail_in == 0 && !eof_ && !refill()) eof_ = true;
+      if (pos_ >= cps_.back().out + every_) checkpoint();
+      const size_t want = std::min<size_t>(n - done, 1u << 30);
+      zs_.next_out = out + done;
+      zs_.avail_out = static_cast<uInt>(want);
+      const int ret = inflate(&zs_, Z_NO_FLUSH);  // also with no input: it may hold output
+      const size_t got = want - zs_.avail_out;
+      done += got;
+      pos_ += got;
+      if (ret == Z_STREAM_END) {  // a gzip member ends: another may follow
+        if (zs_.avail_in == 0 && !eof_ && !refill()) eof_ = true;
+        if (zs_.avail_in == 0) break;  // the end of the file
+        inflateReset(&zs_);
+        continue;
       }
-      if (got == 0) break;
-      done += static_cast<size_t>(got);
+      if (ret == Z_BUF_ERROR && zs_.avail_in == 0) {
+        if (eof_) break;  // cut short: the caller sees a short read ("truncated")
+        continue;
+      }
+      if (ret != Z_OK)
+        throw RawlogError("rawlog '" + path_ + "' is damaged (compressed data: " +
+                          (zs_.msg ? zs_.msg : "zlib error " + std::to_string(ret)) + ")");
     }
     return done;
   }
@@ -55,20 +90,74 @@ class RawlogIndex::Stream : public mrpt::io::CStream {
     throw std::logic_error("RawlogIndex: the input is never written");
   }
   uint64_t Seek(int64_t off, CStream::TSeekOrigin origin) override {
-    const int whence = origin == sFromBeginning ? SEEK_SET : SEEK_CUR;
-    if (origin == sFromEnd) throw std::logic_error("RawlogIndex: cannot seek from the end");
-    const z_off_t r = gzseek(f_, static_cast<z_off_t>(off), whence);
-    if (r < 0) throw RawlogError("rawlog '" + path_ + "': cannot seek to byte " + std::to_string(off));
-    return static_cast<uint64_t>(r);
+    if (origin != sFromBeginning) throw std::logic_error("RawlogIndex: absolute seeks only");
+    const auto target = static_cast<std::uint64_t>(off);
+    if (!gz_) {
+      if (std::fseek(f_, static_cast<long>(off), SEEK_SET) != 0)
+        throw RawlogError("rawlog '" + path_ + "': cannot seek to byte " + std::to_string(off));
+      pos_ = file_pos_ = target;
+      return pos_;
+    }
+    const Checkpoint* best = &cps_.front();
+    for (const auto& c : cps_)
+      if (c.out <= target) best = &c;
+    if (!(pos_ <= target && pos_ >= best->out)) {  // restart from the copy
+      inflateEnd(&zs_);
+      if (inflateCopy(&zs_, best->zs.get()) != Z_OK)
+        throw RawlogError("rawlog '" + path_ + "': cannot restore the zlib state");
+      std::fseek(f_, static_cast<long>(best->in), SEEK_SET);
+      file_pos_ = best->in;
+      zs_.avail_in = 0;
+      zs_.next_in = in_.data();
+      eof_ = false;
+      pos_ = best->out;
+    }
+    std::vector<char> skip(1 << 16);
+    while (pos_ < target) {
+      const size_t got = Read(skip.data(), std::min<std::uint64_t>(skip.size(), target - pos_));
+      if (got == 0)
+        throw RawlogError("rawlog '" + path_ + "' is shorter than when it was indexed");
+    }
+    return pos_;
   }
   uint64_t getTotalBytesCount() const override { return 0; }
-  uint64_t getPosition() const override { return static_cast<uint64_t>(gztell(f_)); }
-  /// Compressed bytes consumed (for progress).
-  uint64_t rawPosition() const { return static_cast<uint64_t>(gzoffset(f_)); }
+  uint64_t getPosition() const override { return pos_; }
+  /// File bytes consumed (for progress).
+  uint64_t rawPosition() const { return file_pos_; }
+  std::size_t checkpoints() const { return cps_.size(); }
 
  private:
+  struct Checkpoint {
+    std::uint64_t out = 0;  ///< uncompressed position
+    std::uint64_t in = 0;   ///< file offset of the next compressed byte
+    std::unique_ptr<z_stream> zs;
+  };
+
+  bool refill() {
+    const size_t got = std::fread(in_.data(), 1, in_.size(), f_);
+    file_pos_ += got;
+    zs_.next_in = in_.data();
+    zs_.avail_in = static_cast<uInt>(got);
+    return got > 0;
+  }
+  void checkpoint() {
+    Checkpoint c;
+    c.out = pos_;
+    c.in = file_pos_ - zs_.avail_in;
+    c.zs = std::make_unique<z_stream>();
+    if (inflateCopy(c.zs.get(), &zs_) != Z_OK)
+      throw RawlogError("rawlog '" + path_ + "': cannot copy the zlib state");
+    cps_.push_back(std::move(c));
+  }
+
   std::string path_;
-  gzFile f_ = nullptr;
+  std::FILE* f_ = nullptr;
+  bool gz_ = false, eof_ = false;
+  z_stream zs_{};
+  std::vector<unsigned char> in_;
+  std::uint64_t pos_ = 0, file_pos_ = 0;
+  std::vector<Checkpoint> cps_;
+  std::uint64_t every_;
 };
 
 namespace {
@@ -128,7 +217,7 @@ RawlogIndex::RawlogIndex(std::string rawlog, ObservationConverter converter, Opt
     throw RawlogError("rawlog '" + path_ + "' does not exist or is not a file");
   if (std::filesystem::file_size(path_, ec) == 0)
     throw RawlogError("rawlog '" + path_ + "' is empty");
-  in_ = std::make_unique<Stream>(path_);
+  in_ = std::make_unique<Stream>(path_, opts.checkpoint_bytes);
   auto ar = mrpt::serialization::archiveFrom(*in_);
   std::vector<mobs::CObservation::Ptr> obs;
   std::optional<Eigen::Isometry3d> odometry;
@@ -173,6 +262,10 @@ RawlogIndex::RawlogIndex(std::string rawlog, ObservationConverter converter, Opt
 }
 
 RawlogIndex::~RawlogIndex() = default;
+
+std::size_t RawlogIndex::checkpoints() const {
+  return in_->checkpoints();
+}
 
 void RawlogIndex::read(std::size_t k, Frame& f) {
   const Sweep& s = sweeps_.at(k);
