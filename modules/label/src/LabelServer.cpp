@@ -235,6 +235,23 @@ struct LabelServer::Impl {
       int yes = 1;
       setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<const void*>(&yes), sizeof(yes));
     });
+    // Only this machine's pages may drive the API: a Host other than 127.0.0.1 / localhost (DNS
+    // rebinding) is refused, and a POST must say application/json, which another site's page
+    // cannot send here without a CORS preflight this server never grants.
+    http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+      const std::string host = req.get_header_value("Host");
+      const std::string name = host.substr(0, host.rfind(':'));
+      const bool local = host.empty() || name == "127.0.0.1" || name == "localhost";
+      const bool json_post = req.method != "POST" ||
+                             req.get_header_value("Content-Type").rfind("application/json", 0) == 0;
+      if (local && json_post) return httplib::Server::HandlerResponse::Unhandled;
+      res.status = 403;
+      res.set_content(json{{"error", local ? "POST requests must be application/json"
+                                           : "dynobj-label answers to 127.0.0.1 only"}}
+                          .dump(),
+                      "application/json");
+      return httplib::Server::HandlerResponse::Handled;
+    });
     http.set_mount_point("/", opts.page_dir);
     http.set_file_extension_and_mimetype_mapping("js", "text/javascript");
   }

@@ -88,6 +88,14 @@ TEST(LabelServer, ServesThePageAndTheApiOnLocalhost) {
   ASSERT_TRUE(save);
   EXPECT_EQ(save->status, 200) << save->body;
   EXPECT_TRUE(std::filesystem::exists(dir + "/out.instances"));
+  // What another site's page could send: a form-like POST, or any request under another name.
+  auto form = cli.Post("/api/object", R"({"k":0,"id":0,"pixels":[5]})", "text/plain");
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 403);
+  auto rebound = cli.Get("/api/info", {{"Host", "evil.example:" + std::to_string(fx.port)}});
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_EQ(json::parse(cli.Get("/api/sweep?k=0")->body)["objects"].size(), 1u);
 }
 
 TEST(LabelServer, ASaveToAnUnwritablePlaceIsReportedAndNothingIsLost) {

@@ -391,7 +391,8 @@ function wire() {
     guarded(act);
   });
   // Leaving the page: ask the server to save now (it also saves every few seconds by itself).
-  window.addEventListener('pagehide', () => navigator.sendBeacon('/api/save', '{}'));
+  window.addEventListener('pagehide', () =>
+    navigator.sendBeacon('/api/save', new Blob(['{}'], {type: 'application/json'})));
   window.addEventListener('beforeunload', (ev) => { if (S.cand && S.cand.size) { ev.preventDefault(); ev.returnValue = ''; } });
   showVal();
 }
