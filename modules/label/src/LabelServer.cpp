@@ -31,7 +31,9 @@ struct LabelServer::Impl {
   std::condition_variable wake;
 
   Impl(LabelSession& s, ServerOptions o) : session(s), opts(std::move(o)) {
-    saved_revision = session.revision();
+    // Nothing is on disk yet for this run (pre-labels, a fresh or resumed session): the first
+    // autosave writes the files, so they exist and hold what the page shows from the start.
+    saved_revision = ~std::uint64_t{0};
   }
 
   bool saveLocked(std::string& error, bool force = false) {
