@@ -3,6 +3,7 @@
 // the dynamic-label file format v1, and (given ground truth) prints the paper's metrics.
 #include <dynobj/eval/DetectionDiagnostics.h>
 #include <dynobj/eval/EgoMotionCheck.h>
+#include <dynobj/eval/EgoMotionError.h>
 #include <dynobj/eval/MapConsistency.h>
 #include <dynobj/eval/Overlay.h>
 #include <dynobj/io/LabelFile.h>
@@ -31,6 +32,11 @@ int run(int argc, char** argv) {
       "TUM file of sensor poses: use them as ego-motion instead of the "
       "intensity ego-motion (e.g. ground truth)",
       false, "", "file.tum", cmd);
+  TCLAP::ValueArg<std::string> ego_truth(
+      "", "ego-truth",
+      "TUM file of true sensor poses: print the ego-motion's error against them (not used by the "
+      "detector)",
+      false, "", "file.tum", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
                                       "file.ini", cmd);
   TCLAP::SwitchArg check_ego("", "check-ego",
@@ -53,9 +59,13 @@ int run(int argc, char** argv) {
 
   dynobj::mrptio::SequenceOptions so;
   so.detector = dynobj::apps::loadDetectorParams(config.getValue());
-  so.poses = poses.getValue();
+  if (poses.isSet() && ego_truth.isSet())
+    throw std::invalid_argument(
+        "give --poses (used as motion) or --ego-truth (compared), not both");
+  so.poses = ego_truth.isSet() ? ego_truth.getValue() : poses.getValue();
+  so.poses_as_motion = !ego_truth.isSet();
   so.ground_truth = gt.getValue();
-  so.single_sensor = out.isSet() || consistency.isSet();  // a label file / map of one sensor
+  so.single_sensor = out.isSet() || consistency.isSet() || ego_truth.isSet();  // one sensor
   if (overlays.isSet()) dynobj::apps::ensureDirectory(overlays.getValue());
   dynobj::mrptio::RawlogFrameSource source(in.getValue(), sensor.converter(),
                                            {sensor.label(), 0, SIZE_MAX});
@@ -64,6 +74,8 @@ int run(int argc, char** argv) {
   std::optional<dynobj::eval::MapConsistency> map_check;
   if (consistency.isSet()) map_check.emplace();
   std::optional<Eigen::Isometry3d> sensor_pose;  // accumulated ego-motion
+  dynobj::eval::EgoMotionError ego_error;
+  std::optional<Eigen::Isometry3d> last_truth;
   std::unique_ptr<dynobj::io::LabelFileWriter> writer;
   dynobj::eval::DetectionDiagnostics diag;
   dynobj::mrptio::SequenceRunner(source, so).run([&](const dynobj::mrptio::FrameResult& fr) {
@@ -73,8 +85,13 @@ int run(int argc, char** argv) {
       writer = std::make_unique<dynobj::io::LabelFileWriter>(out.getValue(), f.rows(), f.cols());
     if (writer) writer->write(f.timestamp_ns, dynobj::io::pixelsOfMask(r.dynamic));
     if (ego_check) ego_check->add(f, r.ego_motion);
+    if (ego_truth.isSet()) {
+      if (last_truth) ego_error.add(last_truth->inverse() * fr.pose->pose, r.ego_motion.motion);
+      last_truth = fr.pose->pose;
+    }
     if (map_check) {
-      sensor_pose = sensor_pose ? *sensor_pose * r.ego_motion.motion : Eigen::Isometry3d::Identity();
+      sensor_pose =
+          sensor_pose ? *sensor_pose * r.ego_motion.motion : Eigen::Isometry3d::Identity();
       map_check->add(f, *sensor_pose, r.dynamic);
     }
     const cv::Mat_<std::uint8_t> truth = fr.truthMask();
@@ -92,6 +109,7 @@ int run(int argc, char** argv) {
   std::cout << diag.summaryLine();
   diag.timing().print(std::cout);
   if (ego_check) std::cout << "  ICP check: " << ego_check->summary().toString() << "\n";
+  if (ego_truth.isSet()) std::cout << "  " << ego_error.toString() << "\n";
   if (map_check) {
     std::cout << "  consistency: " << map_check->evaluate().toString() << "\n";
     dynobj::io::writePng(consistency.getValue(), map_check->topView());

@@ -64,6 +64,7 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       foreground_(params.foreground),
       ground_(params.ground),
       ego_(params.ego_motion),
+      refiner_(params.ego_refinement),
       clusterer_(params.clustering),
       associator_(params.association),
       movement_(params.movement),
@@ -78,6 +79,7 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
 
 void DynamicObjectDetector::reset() {
   ego_.reset();
+  refiner_.reset();
   tracks_.reset();
   chain_.clear();
   frame_index_ = -1;
@@ -94,9 +96,19 @@ EgoMotion DynamicObjectDetector::egoMotion(const LidarFrame& frame,
     em.motion = *external;
     em.ok = true;
     em.source = "external";
-  } else if (!em.ok && frame_index_ > 0) {
-    em.motion = last_motion_;  // keep tracking on a constant-velocity guess, flagged unreliable
-    em.source = "constant-velocity";
+  } else if (em.ok || frame_index_ > 0) {
+    // Beyond the paper: refined on the range images' geometry, from the feature estimate or,
+    // when the features failed, from the constant-velocity guess.
+    const EgoRefinement g = refiner_.refine(frame, em.ok ? em.motion : last_motion_, prev_dynamic_);
+    if (g.ok) {
+      em.motion = g.motion;
+      em.refined = true;
+      if (!em.ok) em.source = "geometric";
+      em.ok = true;
+    } else if (!em.ok) {
+      em.motion = last_motion_;  // keep tracking on a constant-velocity guess, flagged unreliable
+      em.source = "constant-velocity";
+    }
   }
   if (em.ok) last_motion_ = em.motion;
   return em;
@@ -186,6 +198,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
   free_space_.remember(frame_index_, frame);
+  refiner_.remember(frame);
   ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
   result_.dynamic.copyTo(prev_dynamic_);
 }

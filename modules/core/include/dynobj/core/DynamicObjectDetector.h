@@ -13,6 +13,7 @@
 #include "dynobj/core/ClusterAssociator.h"
 #include "dynobj/core/Clusterer.h"
 #include "dynobj/core/EgoMotionEstimator.h"
+#include "dynobj/core/EgoMotionRefiner.h"
 #include "dynobj/core/ForegroundExtractor.h"
 #include "dynobj/core/FrameChain.h"
 #include "dynobj/core/FreeSpaceCheck.h"
@@ -30,6 +31,7 @@ struct DetectorParams {
   ForegroundParams foreground;
   GroundParams ground;
   EgoMotionParams ego_motion;
+  EgoRefinementParams ego_refinement;
   ClusteringParams clustering;
   AssociationParams association;
   MovementParams movement;
@@ -43,6 +45,7 @@ struct DetectorParams {
     f("foreground", foreground);
     f("ground", ground);
     f("ego_motion", ego_motion);
+    f("ego_refinement", ego_refinement);
     f("clustering", clustering);
     f("association", association);
     f("movement", movement);
@@ -115,6 +118,7 @@ class DynamicObjectDetector {
   ForegroundExtractor foreground_;
   GroundSegmenter ground_;
   EgoMotionEstimator ego_;
+  EgoMotionRefiner refiner_;
   Clusterer clusterer_;
   ClusterAssociator associator_;
   MovementAnalyzer movement_;

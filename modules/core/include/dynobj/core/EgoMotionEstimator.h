@@ -49,7 +49,9 @@ struct EgoMotion {
   bool ok = false;  ///< estimated with enough inliers (or given externally)
   int matches = 0;  ///< ratio-test matches with 3D points on both sides
   int inliers = 0;
-  std::string source = "none";  ///< "intensity", "external", "constant-velocity", "none"
+  bool refined = false;         ///< corrected by the geometric refinement (EgoMotionRefiner)
+  std::string source = "none";  ///< "intensity", "geometric" (features failed, geometry held),
+                                ///< "external", "constant-velocity", "none"
 };
 
 class EgoMotionEstimator {

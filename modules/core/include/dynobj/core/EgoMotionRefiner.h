@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Beyond the paper (docs/algorithm.md §3b): the intensity ego-motion of Eq. (5) refined on the
+// geometry of the range images. The feature estimate rests on ~100-200 ORB matches, each located to
+// a pixel: a few tenths of a degree of rotation per frame, which the sliding window (Eq. 16)
+// accumulates into apparent motion of far static structure, and a drift when the matches gather on
+// one object. The refinement is a point-to-plane ICP with projective association (each sampled
+// point of the current frame is carried into the previous frame by the current estimate and
+// projected with Eq. 1; its partner is the previous frame's point in that pixel, with the normal of
+// the previous range image there), Huber-weighted, starting from the feature estimate (or from the
+// constant-velocity guess when the features failed) and damped towards it, so a direction the
+// geometry does not constrain (a corridor's axis) keeps the feature estimate.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <optional>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+#include "dynobj/core/SphericalProjection.h"
+
+namespace dynobj::core {
+
+struct EgoRefinementParams : public StageParams {
+  bool enabled = true;
+  int points = 3000;              ///< pixels of the current frame sampled (evenly)
+  int iterations = 8;             ///< Gauss-Newton steps at most
+  double max_distance = 0.5;      ///< [m] partners farther apart are ignored (first step) ...
+  double final_distance = 0.2;    ///< [m] ... shrinking linearly to this at the last step
+  double huber = 0.05;            ///< [m] Huber kernel width on point-to-plane residuals
+  double damping = 0.01;          ///< step damping, relative to the mean information per axis
+  int min_correspondences = 300;  ///< fewer partners: the feature estimate is kept
+  double max_correction = 0.5;    ///< [m] a larger change of translation is rejected ...
+  double max_correction_angle = 3.0 * M_PI / 180.0;  ///< [rad] (INI: degrees) ... or of rotation
+
+  void visit(ParamVisitor& v) override;
+  void validate() const override;
+};
+
+struct EgoRefinement {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  ///< T_{prev<-cur}
+  bool ok = false;          ///< enough partners and a correction within bounds
+  int correspondences = 0;  ///< partners at the last step
+};
+
+class EgoMotionRefiner {
+ public:
+  explicit EgoMotionRefiner(const EgoRefinementParams& p = {});
+
+  /// Refines `init` (T_{prev<-cur}) between the remembered frame and `frame`. Partners on
+  /// `exclude_prev` (the previous frame's dynamic pixels; may be empty) are ignored. Without a
+  /// remembered frame of the same size: ok = false.
+  EgoRefinement refine(const LidarFrame& frame, const Eigen::Isometry3d& init,
+                       const cv::Mat_<std::uint8_t>& exclude_prev) const;
+  /// Keeps `frame`'s points as the previous frame of the next call (normals computed on demand).
+  void remember(const LidarFrame& frame);
+  void reset() { have_prev_ = false; }
+  const EgoRefinementParams& params() const { return p_; }
+
+ private:
+  EgoRefinementParams p_;
+  bool have_prev_ = false;
+  /// The previous frame's range image, points and normals: a normal is computed when a partner
+  /// first needs it (NaN = not yet; (0,0,0) = none there).
+  cv::Mat_<float> prev_range_;
+  cv::Mat_<cv::Vec3f> prev_xyz_;
+  mutable cv::Mat_<cv::Vec3f> prev_normal_;
+  std::optional<SphericalProjection> proj_;  ///< Eq. (1) of the remembered frame's sensor
+};
+
+}  // namespace dynobj::core

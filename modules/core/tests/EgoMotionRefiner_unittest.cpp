@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/Config.h>
+#include <dynobj/core/EgoMotionRefiner.h>
+#include <gtest/gtest.h>
+
+#include "SyntheticScene.h"
+
+using namespace dynobj::core;
+using dynobj::test::Scene;
+
+namespace {
+
+Eigen::Isometry3d pose(double x, double y, double z, double yaw_deg, double roll_deg = 0) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  T.linear() = (Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(roll_deg * M_PI / 180, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+double yawOf(const Eigen::Isometry3d& T) {
+  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+}
+
+/// Refines `init` between the scene seen from the identity and from `motion` (T_{prev<-cur}).
+EgoRefinement refineBetween(Scene scene, const Eigen::Isometry3d& motion,
+                            const Eigen::Isometry3d& init, const EgoRefinementParams& p = {}) {
+  const auto s = dynobj::test::smallSensor(64, 1024);
+  const LidarFrame prev = dynobj::test::render(scene, s, true, 1);
+  scene.sensor = motion;
+  const LidarFrame cur = dynobj::test::render(scene, s, true, 2);
+  EgoMotionRefiner refiner(p);
+  refiner.remember(prev);
+  return refiner.refine(cur, init, {});
+}
+
+}  // namespace
+
+TEST(EgoMotionRefiner, CorrectsAFeatureEstimateOnTheGeometry) {
+  Scene scene;
+  scene.posts = {{3, 2, 0.4, 2.0}, {-4, 1, 0.3, 2.5}, {1, -5, 0.5, 1.5}};
+  const Eigen::Isometry3d truth = pose(0.25, -0.1, 0.01, 2.0);
+  const Eigen::Isometry3d init = truth * pose(0.08, -0.05, 0.02, 0.6, 0.3);  // a poor estimate
+  const EgoRefinement g = refineBetween(scene, truth, init);
+  ASSERT_TRUE(g.ok) << g.correspondences << " partners";
+  const Eigen::Isometry3d err = truth.inverse() * g.motion;
+  EXPECT_LT(err.translation().norm(), 0.01);
+  EXPECT_LT(Eigen::AngleAxisd(err.linear()).angle() * 180 / M_PI, 0.05);
+  EXPECT_GT(g.correspondences, EgoRefinementParams().min_correspondences);
+}
+
+TEST(EgoMotionRefiner, KeepsTheEstimateWhereTheGeometryIsSilent) {
+  // A round room without posts, the sensor at its centre: turning about the vertical axis changes
+  // nothing the geometry can see, so the estimate's yaw must survive while its offset is fixed.
+  Scene scene;
+  const Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d init = pose(0.06, 0.04, 0.03, 0.5);
+  const EgoRefinement g = refineBetween(scene, truth, init);
+  ASSERT_TRUE(g.ok);
+  EXPECT_LT(g.motion.translation().norm(), 0.01);
+  EXPECT_NEAR(yawOf(g.motion) * 180 / M_PI, 0.5, 0.05);
+}
+
+TEST(EgoMotionRefiner, WithoutAPreviousFrameOrPartnersTheEstimateIsKept) {
+  const auto s = dynobj::test::smallSensor(32, 512);
+  const LidarFrame f = dynobj::test::render(Scene{}, s, true, 1);
+  const Eigen::Isometry3d init = pose(0.1, 0, 0, 1);
+  EgoMotionRefiner refiner;
+  EgoRefinement g = refiner.refine(f, init, {});  // nothing remembered yet
+  EXPECT_FALSE(g.ok);
+  EXPECT_TRUE(g.motion.isApprox(init));
+
+  EgoRefinementParams p;
+  p.min_correspondences = 1000000;
+  EgoMotionRefiner strict(p);
+  strict.remember(f);
+  g = strict.refine(f, init, {});
+  EXPECT_FALSE(g.ok);
+  EXPECT_TRUE(g.motion.isApprox(init));
+
+  cv::Mat_<std::uint8_t> all(f.rows(), f.cols(), std::uint8_t{255});  // every partner excluded
+  EgoMotionRefiner refiner2;
+  refiner2.remember(f);
+  g = refiner2.refine(f, init, all);
+  EXPECT_FALSE(g.ok);
+  EXPECT_EQ(g.correspondences, 0);
+}
+
+TEST(EgoMotionRefiner, ACorrectionBeyondItsBoundsIsRejected) {
+  Scene scene;
+  scene.posts = {{3, 2, 0.4, 2.0}, {-4, 1, 0.3, 2.5}, {1, -5, 0.5, 1.5}};
+  EgoRefinementParams p;
+  p.max_correction = 0.02;  // the estimate is 8 cm off: the refinement would move it further
+  const Eigen::Isometry3d truth = pose(0.2, 0, 0, 1.0);
+  const Eigen::Isometry3d init = truth * pose(0.08, 0, 0, 0);
+  const EgoRefinement g = refineBetween(scene, truth, init, p);
+  EXPECT_FALSE(g.ok);
+  EXPECT_TRUE(g.motion.isApprox(init));
+}
+
+TEST(EgoMotionRefiner, ParametersNameTheBadKey) {
+  EgoRefinementParams p;
+  p.final_distance = 2 * p.max_distance;
+  try {
+    p.validate();
+    FAIL() << "no error";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("final_distance"), std::string::npos) << e.what();
+  }
+  p = {};
+  p.iterations = 0;
+  EXPECT_THROW(p.validate(), ParameterError);
+}
