@@ -8,7 +8,8 @@ set -euo pipefail
 DYNOBJ_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # Why each package is needed: docs/architecture.md, "Dependencies".
 DYNOBJ_PACKAGES=(cmake make g++ libmrpt-dev mrpt-apps mrpt-common libopencv-dev libeigen3-dev
-                 libnanoflann-dev libgtest-dev libpcap-dev nlohmann-json3-dev libisal-dev)
+                 libnanoflann-dev libgtest-dev libpcap-dev nlohmann-json3-dev libisal-dev zlib1g-dev
+                 libcpp-httplib-dev)
 
 log() { printf '[dynobj] %s\n' "$*"; }
 

@@ -66,6 +66,11 @@ int run(int argc, char** argv) {
                                   "Object recall counts objects with at least this "
                                   "many points in a sweep",
                                   false, 10, "N", cmd);
+  TCLAP::ValueArg<std::string> unreviewed(
+      "", "unreviewed",
+      "With --gt: sweeps of a person-made label file nobody reviewed (dynobj-label's '# "
+      "reviewed' line): refuse (default), skip them, or include them as they are",
+      false, "refuse", "refuse|skip|include", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (run_in.isSet() == (gt.isSet() || pred.isSet()) || gt.isSet() != pred.isSet()) {
@@ -78,7 +83,7 @@ int run(int argc, char** argv) {
 
   if (gt.isSet()) {  // existing files: metrics only (no frames, so no overlays or timings)
     writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command,
-                 {eval::scoreLabelFiles(gt.getValue(), pred.getValue())});
+                 {eval::scoreLabelFiles(gt.getValue(), pred.getValue(), unreviewed.getValue())});
     return 0;
   }
 

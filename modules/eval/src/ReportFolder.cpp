@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 #include "dynobj/eval/Overlay.h"
@@ -38,14 +39,30 @@ std::string writeReportFolder(const std::string& dir, const std::string& title,
   return table;
 }
 
-RunResult scoreLabelFiles(const std::string& gt, const std::string& pred) {
+RunResult scoreLabelFiles(const std::string& gt, const std::string& pred,
+                          const std::string& unreviewed) {
+  if (unreviewed != "refuse" && unreviewed != "skip" && unreviewed != "include")
+    throw std::invalid_argument("--unreviewed must be refuse, skip or include (got '" +
+                                unreviewed + "')");
   RunResult r;
   r.mode = "files";
   r.description = std::filesystem::path(pred).filename().string();
   r.sequence = std::filesystem::path(gt).filename().string();
   r.sequence = r.sequence.substr(0, r.sequence.find('.'));  // hall.gt.labels -> hall
-  const io::LabelFile truth = io::LabelFile::read(gt);
-  r.metrics = SequenceMetrics::compute(truth, io::LabelFile::read(pred));
+  io::LabelFile truth = io::LabelFile::read(gt);
+  io::LabelFile predicted = io::LabelFile::read(pred);
+  if (unreviewed == "refuse") truth.requireReviewed(gt);
+  if (unreviewed == "skip" && truth.has_review) {
+    truth.keepReviewedOnly();
+    if (truth.sweeps.empty()) throw std::runtime_error(gt + ": no sweep was reviewed");
+    std::set<std::int64_t> keep;
+    for (const auto& s : truth.sweeps) keep.insert(s.timestamp_ns);
+    std::vector<io::LabelSweep> kept;
+    for (auto& s : predicted.sweeps)
+      if (keep.count(s.timestamp_ns)) kept.push_back(std::move(s));
+    predicted.sweeps = std::move(kept);
+  }
+  r.metrics = SequenceMetrics::compute(truth, predicted);
   r.rows = truth.rows;
   r.cols = truth.cols;
   return r;

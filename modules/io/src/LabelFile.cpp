@@ -38,11 +38,18 @@ LabelFile LabelFile::read(const std::string& path) {
               " or '# dynobj-instances v1 rows=<H> cols=<W>', each at most " + std::to_string(kMaxSide) +
               ")");
   }
+  std::string review_line;
+  std::size_t review_line_no = 0;
   const std::uint64_t n_pixels =
       static_cast<std::uint64_t>(f.rows) * static_cast<std::uint64_t>(f.cols);
   while (std::getline(in, text)) {
     line_no++;
     if (text.empty()) bad(path, line_no, "empty line");
+    if (text.rfind("# reviewed ", 0) == 0 && f.sweeps.empty() && review_line_no == 0) {
+      review_line = text.substr(11);
+      review_line_no = line_no;
+      continue;
+    }
     std::istringstream ss(text);
     LabelSweep s;
     long long count = -1;
@@ -79,7 +86,97 @@ LabelFile LabelFile::read(const std::string& path) {
               " indices follow");
     f.sweeps.push_back(std::move(s));
   }
+  if (review_line_no > 0) {
+    try {
+      f.reviewed = parseSweepRanges(review_line, f.sweeps.size());
+    } catch (const std::invalid_argument& e) {
+      bad(path, review_line_no, std::string("bad '# reviewed' line: ") + e.what());
+    }
+    f.has_review = true;
+  }
   return f;
+}
+
+std::vector<std::size_t> LabelFile::unreviewedSweeps() const {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < sweeps.size(); k++)
+    if (!isReviewed(k)) out.push_back(k);
+  return out;
+}
+
+void LabelFile::requireReviewed(const std::string& path) const {
+  const auto missing = unreviewedSweeps();
+  if (missing.empty()) return;
+  std::vector<std::uint8_t> flags(sweeps.size(), 0);
+  for (std::size_t k : missing) flags[k] = 1;
+  std::string list = formatSweepRanges(flags);
+  if (list.size() > 60) list = list.substr(0, 57) + "...";
+  throw LabelFileError(path + ": " + std::to_string(missing.size()) + " of " +
+                       std::to_string(sweeps.size()) +
+                       " sweeps were not reviewed by a person (sweeps " + list +
+                       "): review them in dynobj-label, or score only the reviewed ones"
+                       " (dynobj-eval --unreviewed skip)");
+}
+
+void LabelFile::keepReviewedOnly() {
+  if (!has_review) return;
+  std::vector<LabelSweep> kept;
+  for (std::size_t k = 0; k < sweeps.size(); k++)
+    if (isReviewed(k)) kept.push_back(std::move(sweeps[k]));
+  sweeps = std::move(kept);
+  reviewed.assign(sweeps.size(), 1);
+}
+
+std::string formatSweepRanges(const std::vector<std::uint8_t>& flags) {
+  std::string out;
+  for (std::size_t k = 0; k < flags.size();) {
+    if (!flags[k]) {
+      k++;
+      continue;
+    }
+    std::size_t end = k;
+    while (end + 1 < flags.size() && flags[end + 1]) end++;
+    if (!out.empty()) out += ',';
+    out += std::to_string(k);
+    if (end > k) out += "-" + std::to_string(end);
+    k = end + 1;
+  }
+  return out.empty() ? "none" : out;
+}
+
+std::vector<std::uint8_t> parseSweepRanges(const std::string& text, std::size_t n) {
+  std::vector<std::uint8_t> flags(n, 0);
+  if (text == "none") return flags;
+  if (text.empty()) throw std::invalid_argument("empty list (write 'none' for no sweep)");
+  std::size_t pos = 0;
+  const auto number = [&](std::size_t& v) {
+    const std::size_t start = pos;
+    v = 0;
+    while (pos < text.size() && text[pos] >= '0' && text[pos] <= '9') {
+      v = v * 10 + static_cast<std::size_t>(text[pos] - '0');
+      if (v > n) throw std::invalid_argument("sweep " + text.substr(start) + " does not exist");
+      pos++;
+    }
+    if (pos == start) throw std::invalid_argument("expected a sweep number at '" + text.substr(start) + "'");
+  };
+  while (pos < text.size()) {
+    std::size_t a = 0, b = 0;
+    number(a);
+    b = a;
+    if (pos < text.size() && text[pos] == '-') {
+      pos++;
+      number(b);
+    }
+    if (b < a || b >= n)
+      throw std::invalid_argument("sweeps " + std::to_string(a) + "-" + std::to_string(b) +
+                                  " are not within the file's " + std::to_string(n) + " sweeps");
+    for (std::size_t k = a; k <= b; k++) flags[k] = 1;
+    if (pos < text.size() && text[pos++] != ',')
+      throw std::invalid_argument("expected ',' between ranges");
+    if (pos == text.size() && text.back() == ',')
+      throw std::invalid_argument("the list ends with ','");
+  }
+  return flags;
 }
 
 std::vector<std::uint32_t> pixelsOfMask(const cv::Mat_<std::uint8_t>& mask) {
@@ -105,6 +202,13 @@ LabelFileWriter::LabelFileWriter(const std::string& path, int rows, int cols, bo
                  << " cols=" << cols << "\n";
 }
 
+void LabelFileWriter::writeReviewed(const std::vector<std::uint8_t>& reviewed) {
+  if (any_) throw std::logic_error("LabelFileWriter: the '# reviewed' line goes before the sweeps");
+  if (review_count_ >= 0) throw std::logic_error("LabelFileWriter: one '# reviewed' line only");
+  file_.stream() << "# reviewed " << formatSweepRanges(reviewed) << "\n";
+  review_count_ = static_cast<std::int64_t>(reviewed.size());
+}
+
 void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& pixels,
                             const std::vector<std::int32_t>& ids) {
   if (any_ && timestamp_ns <= last_ts_)
@@ -123,9 +227,14 @@ void LabelFileWriter::write(std::int64_t timestamp_ns, const std::vector<std::ui
   file_.stream() << '\n';
   any_ = true;
   last_ts_ = timestamp_ns;
+  written_++;
 }
 
 void LabelFileWriter::close() {
+  if (review_count_ >= 0 && static_cast<std::size_t>(review_count_) != written_)
+    throw std::logic_error("LabelFileWriter: the '# reviewed' line covers " +
+                           std::to_string(review_count_) + " sweeps but " +
+                           std::to_string(written_) + " were written");
   file_.commit();
 }
 

@@ -115,3 +115,57 @@ TEST(LabelFile, InstanceFileRoundTripAndErrors) {
                   .sweeps[0]
                   .ids.empty());
 }
+
+TEST(LabelFile, ReviewedLineRoundTripsAndOldFilesCountAsReviewed) {
+  const auto p = temp(".reviewed.labels");
+  {
+    LabelFileWriter w(p, 2, 3);
+    w.writeReviewed({1, 1, 0, 1});
+    for (int k = 0; k < 4; k++) w.write(10 + k, {static_cast<std::uint32_t>(k)});
+    w.close();
+  }
+  std::ifstream in(p);
+  std::string l1, l2;
+  std::getline(in, l1);
+  std::getline(in, l2);
+  EXPECT_EQ(l2, "# reviewed 0-1,3");
+  LabelFile f = LabelFile::read(p);
+  ASSERT_EQ(f.sweeps.size(), 4u);
+  EXPECT_TRUE(f.has_review);
+  EXPECT_EQ(f.unreviewedSweeps(), (std::vector<std::size_t>{2}));
+  EXPECT_THROW(f.requireReviewed(p), LabelFileError);
+  f.keepReviewedOnly();
+  ASSERT_EQ(f.sweeps.size(), 3u);
+  EXPECT_EQ(f.sweeps[2].timestamp_ns, 13);
+  EXPECT_NO_THROW(f.requireReviewed(p));
+
+  const auto old = temp(".old.labels");  // no '# reviewed' line: every sweep counts
+  {
+    LabelFileWriter w(old, 2, 3);
+    w.write(1, {});
+    w.close();
+  }
+  const LabelFile o = LabelFile::read(old);
+  EXPECT_FALSE(o.has_review);
+  EXPECT_TRUE(o.unreviewedSweeps().empty());
+}
+
+TEST(LabelFile, SweepRangesParseStrictly) {
+  EXPECT_EQ(formatSweepRanges({0, 0}), "none");
+  EXPECT_EQ(formatSweepRanges({1, 0, 1, 1, 1}), "0,2-4");
+  EXPECT_EQ(parseSweepRanges("0,2-4", 5), (std::vector<std::uint8_t>{1, 0, 1, 1, 1}));
+  EXPECT_EQ(parseSweepRanges("none", 2), (std::vector<std::uint8_t>{0, 0}));
+  EXPECT_THROW(parseSweepRanges("0-5", 5), std::invalid_argument);
+  EXPECT_THROW(parseSweepRanges("3-1", 5), std::invalid_argument);
+  EXPECT_THROW(parseSweepRanges("1;2", 5), std::invalid_argument);
+  EXPECT_THROW(parseSweepRanges("", 5), std::invalid_argument);
+  EXPECT_THROW(parseSweepRanges("1,", 5), std::invalid_argument);
+  const auto p = temp(".badreview.labels");
+  std::ofstream(p) << "# dynobj-labels v1 rows=1 cols=1\n# reviewed 0-3\n1 0\n";
+  try {
+    LabelFile::read(p);
+    FAIL();
+  } catch (const LabelFileError& e) {
+    EXPECT_NE(std::string(e.what()).find(":2: bad '# reviewed' line"), std::string::npos) << e.what();
+  }
+}

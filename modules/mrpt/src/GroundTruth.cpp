@@ -7,6 +7,7 @@ namespace dynobj::mrptio {
 
 GroundTruth::GroundTruth(std::string file)
     : file_(std::move(file)), labels_(io::LabelFile::read(file_)) {
+  labels_.requireReviewed(file_);  // labels nobody checked are no ground truth
   for (std::size_t i = 0; i < labels_.sweeps.size(); i++)
     by_time_[labels_.sweeps[i].timestamp_ns] = i;
 }

@@ -16,7 +16,10 @@ std::string writeReportFolder(const std::string& dir, const std::string& title,
                               const std::string& command, const std::vector<RunResult>& runs);
 
 /// Ground truth vs predictions, sweep by sweep (mode "files"; sequence = gt's name up to the
-/// first '.').
-RunResult scoreLabelFiles(const std::string& gt, const std::string& pred);
+/// first '.'). Ground truth made by people records the sweeps they reviewed (`# reviewed`):
+/// `unreviewed` says what to do with the others: "refuse" (throw naming them), "skip" (score the
+/// reviewed sweeps only) or "include" (score them as they are).
+RunResult scoreLabelFiles(const std::string& gt, const std::string& pred,
+                          const std::string& unreviewed = "refuse");
 
 }  // namespace dynobj::eval
