@@ -29,7 +29,8 @@ BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
 BIN="$BUILD_DIR/apps"
 OUT="${DYNOBJ_ACCURACY_OUT:-$DYNOBJ_ROOT/out/accuracy}"
 SCEN="$DYNOBJ_ROOT/share/dynobj/scenarios"
-CONFIG="$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini"
+# DYNOBJ_ACCURACY_CONFIG: another detector INI (e.g. one holding "[ego_refinement] enabled = false")
+CONFIG="${DYNOBJ_ACCURACY_CONFIG:-$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini}"
 mkdir -p "$OUT"
 
 # simulate <scenario> <dir> [dynobj-sim options]: a sequence in <dir> (once per call).
@@ -162,8 +163,10 @@ os0_128() {
 
 # "Quick matrix": 100 sweeps per cell, seeds the defaults were never tuned on, a few presets.
 QUICK=("hall 101" "hall 102" "corridor 101" "corridor 102" "crossing 101" "crossing 102"
-       "street 101" "street 102" "hall 1 vlp-16" "hall 1 os0-128" "crossing 3 vlp-16"
-       "crossing 3 hdl-32" "street 4 hdl-64" "street 4 vlp-16")
+       "street 101" "street 102" "static 101" "hall 101 vlp-16" "hall 101 os0-128"
+       "crossing 101 vlp-16" "crossing 101 hdl-32" "street 101 hdl-64" "street 101 vlp-16"
+       "parking 101" "parking 102" "warehouse 101" "warehouse 102" "plaza 101" "plaza 102"
+       "crowd 101" "corner 101")
 quick_matrix() {
   local dir="$OUT/quick-matrix" md="$OUT/quick-matrix.md" cell s seed sensor sets
   mkdir -p "$dir"
