@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/EgoMotionCheck.h"
+#include "dynobj/eval/EgoMotionError.h"
 
 #include <dynobj/mrptio/PoseConversion.h>
 #include <mrpt/maps/CSimplePointsMap.h>
@@ -87,9 +88,7 @@ void EgoMotionCheck::add(const core::LidarFrame& frame, const core::EgoMotion& e
     s.icp_ok++;
     s.icp_speed.push_back(icp_motion.translation().norm());
     if (ego.ok) {
-      const Eigen::Isometry3d d = icp_motion.inverse() * ego.motion;
-      const double dt = d.translation().norm();
-      const double dr = Eigen::AngleAxisd(d.linear()).angle() * 180.0 / M_PI;
+      const auto [dt, dr] = motionDifference(icp_motion, ego.motion);
       s.compared++;
       s.translation_diff.push_back(dt);
       s.rotation_diff.push_back(dr);

@@ -7,10 +7,13 @@
 
 namespace dynobj::eval {
 
+MotionDifference motionDifference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const Eigen::Isometry3d d = a.inverse() * b;
+  return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * 180.0 / M_PI};
+}
+
 void EgoMotionError::add(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& estimate) {
-  const Eigen::Isometry3d e = truth.inverse() * estimate;
-  const double t = e.translation().norm();
-  const double r = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
+  const auto [t, r] = motionDifference(truth, estimate);
   n_++;
   sum_t2_ += t * t;
   sum_r2_ += r * r;

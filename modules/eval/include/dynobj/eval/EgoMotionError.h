@@ -10,6 +10,13 @@
 
 namespace dynobj::eval {
 
+/// How far apart two motions are: b expressed relative to a.
+struct MotionDifference {
+  double translation = 0;  ///< [m]
+  double rotation = 0;     ///< [deg]
+};
+MotionDifference motionDifference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
 class EgoMotionError {
  public:
   /// One frame pair: the true motion and the estimated one (both T_{prev<-cur}).
