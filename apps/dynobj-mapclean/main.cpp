@@ -37,6 +37,11 @@ int run(int argc, char** argv) {
       "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
   TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
   dynobj::apps::SensorArgs sensor(cmd);
+  TCLAP::ValueArg<std::string> labels(
+      "", "labels",
+      "Classify each scan's points with this label file v1 (e.g. dynobj-label's) instead of the "
+      "detector",
+      false, "", "file", cmd);
   TCLAP::ValueArg<std::string> gt("", "gt",
                                   "Ground truth for SA/DA/AA: label file v1, or gt_cloud.pcd",
                                   false, "", "file", cmd);
@@ -68,6 +73,7 @@ int run(int argc, char** argv) {
   o.clean.validate();
   o.scan_options.sensor = sensor.model();
   o.scan_options.sensor_label = sensor.label();
+  o.labels = labels.getValue();
   o.ground_truth = gt.getValue();
   o.tolerance = tol.getValue();
   o.export_kth = kth.getValue();

@@ -35,10 +35,21 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   const auto report = [&](const char* stage, std::size_t done, std::size_t total) {
     if (progress) progress(stage, done, total);
   };
+  std::optional<mrptio::GroundTruth> labels;  // the classification instead of the detector's
+  if (!o.labels.empty()) {
+    if (o.poses == "ego")
+      throw std::runtime_error(
+          "--poses ego needs the detector's ego-motion, which does not run with --labels: choose "
+          "another pose source");
+    if (!fs::is_regular_file(o.labels))
+      throw std::runtime_error("label file '" + o.labels + "' does not exist");
+    labels.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
+  }
   auto source = openScanSource(o.input, o.scan_options);
   auto poses = makePoseSource(o.poses, o.pose_options);
   mrptio::SequenceOptions pass1;  // detection, ground truth checked against every scan
   pass1.detector = o.detector;
+  pass1.detect = !labels;
   pass1.single_sensor = true;  // one LiDAR per map
   if (!o.ground_truth.empty()) {
     if (!fs::is_regular_file(o.ground_truth))
@@ -81,10 +92,18 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   GroundLeveler leveler;
   runner.run([&](const mrptio::FrameResult& fr) {
     const Scan& s = fr.frame;
-    Eigen::Isometry3d pose = poses->pose(s, fr.detection->ego_motion);
+    Eigen::Isometry3d pose =
+        poses->pose(s, fr.detection ? fr.detection->ego_motion : core::EgoMotion{});
     if (o.clean.level_poses)
       if (const auto ground = leveler.fit(s.frame)) pose = leveler.level(pose, *ground);
-    records.push_back(cleaner.record(*fr.detection, pose));
+    if (labels) {
+      std::size_t k = 0;
+      const io::LabelSweep& sweep = labels->sweep(s.frame, s.index, &k);
+      if (!labels->labels().isReviewed(k)) sum.unreviewed_sweeps++;
+      records.push_back(FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}});
+    } else {
+      records.push_back(cleaner.record(*fr.detection, pose));
+    }
     if (!two_pass) {
       mapScan(s, records.back());
       records.back().dynamic_pixels.clear();

@@ -35,6 +35,10 @@ std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
   out += fmt("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
              o.clean.level_poses ? " (leveled with the floor)" : "",
              o.clean.second_pass ? "two passes" : "single pass");
+  if (!o.labels.empty())
+    out += fmt(
+        "  classification: label file '%s' (detector not run; %zu scans by unreviewed sweeps)\n",
+        o.labels.c_str(), s.unreviewed_sweeps);
   out += fmt(
       "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
       "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "

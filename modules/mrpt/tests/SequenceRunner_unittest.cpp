@@ -125,5 +125,29 @@ TEST(SequenceRunner, GroundTruthIsMatchedByTimestamp) {
   FakeFrames again(1, {"A"});
   o.ground_truth = small;
   expectThrowWith([&] { dm::SequenceRunner(again, o).run([](const dm::FrameResult&) {}); },
-                  "ground truth is 4x32 but the scans are 8x32");
+                  "ground truth is 4x32 but the scans are 8x32 (frame 0 at 1000000000 ns)");
+}
+
+// A label file used as a classification (dynobj-mapclean --labels): unreviewed sweeps accepted,
+// messages name it as a label file; as ground truth the same file is refused.
+TEST(GroundTruth, LabelFileRoleAcceptsUnreviewedSweepsAndNamesItself) {
+  const std::string f = write("dynobj_runner_review.labels",
+                              "# dynobj-labels v1 rows=8 cols=32\n# reviewed 0\n1000000000 1 130\n"
+                              "1100000000 2 3 4\n");
+  expectThrowWith([&] { (void)dm::GroundTruth{f}; }, "1 of 2 sweeps were not reviewed");
+  const dm::GroundTruth labels(f, {"label file", false});
+  FakeFrames src(3, {"A"});
+  dm::Frame fr;
+  std::size_t k = 9;
+  ASSERT_TRUE(src.next(fr));
+  EXPECT_EQ(labels.sweep(fr.frame, fr.index, &k).pixels, (std::vector<std::uint32_t>{130}));
+  EXPECT_EQ(k, 0u);
+  ASSERT_TRUE(src.next(fr));
+  EXPECT_EQ(labels.sweep(fr.frame, fr.index, &k).pixels, (std::vector<std::uint32_t>{3, 4}));
+  EXPECT_EQ(k, 1u);
+  EXPECT_FALSE(labels.labels().isReviewed(1));
+  ASSERT_TRUE(src.next(fr));
+  expectThrowWith([&] { labels.sweep(fr.frame, fr.index); },
+                  "dynobj_runner_review.labels': label file has no sweep at 1200000000 ns (frame "
+                  "2): the timestamps do not match");
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-mapclean's whole job, streaming (memory grows with the map, not the number of scans):
-//   pass 1: the detector over every scan, the pose of each scan (FrameRecord: no points kept);
+//   pass 1: the detector over every scan (or, with `labels`, the label file's sweep of each scan:
+//           the detector is not run), the pose of each scan (FrameRecord: no points kept);
 //   pass 2 (second_pass): every scan again, dynamic = detector + confirmed tracks' boxes, into the
 //           static / dynamic voxel maps, the cleaned simplemap and the KTH export;
 //           (without second_pass this happens during pass 1: on-the-fly, causal);
@@ -32,6 +33,10 @@ struct MapCleanOptions {
   ScanSourceOptions scan_options;
   core::DetectorParams detector;
   MapCleanParams clean;
+  /// Label file v1 (e.g. dynobj-label's): its sweep of each scan is the classification, instead
+  /// of the detector's (no second-pass boxes then); "" = run the detector. Every scan must have
+  /// its sweep (matched by timestamp, same image size). Not with poses "ego".
+  std::string labels;
   std::string ground_truth;  ///< label file v1 (rawlog input) or a labelled gt_cloud.pcd; "" = none
   double tolerance = 0.05;   ///< [m] metric: a GT point is kept when a map point is this close
   std::string export_kth;    ///< folder for the KTH export; "" = none
@@ -50,7 +55,8 @@ struct MapCleanSummary {
   std::size_t backfilled = 0, confirmed_tracks = 0, keyframes = 0, exported_frames = 0,
               exported_points = 0;
   std::optional<MapScores> scores;
-  std::string poses;  ///< description of the pose source
+  std::string poses;                  ///< description of the pose source
+  std::size_t unreviewed_sweeps = 0;  ///< with labels: scans classified by unreviewed sweeps
   double seconds = 0;
   std::vector<std::string> files;  ///< written
 };
