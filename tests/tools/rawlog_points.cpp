@@ -9,7 +9,9 @@
 //       of coordinates); split clouds hold exactly the removed points; stock map insertion of the
 //       output reads exactly the kept points. With a label file (v1) and organized range scans:
 //       the removed points are exactly those on the labelled pixels (with a return), their ranges
-//       moved into the "dynamic" layer. `sensor-label`: only that sensor's scans read the labels.
+//       moved into the "dynamic" layer; other scans (Velodyne, point clouds: no pixel per point in
+//       the raw object) removed as many points as their sweep labels pixels. `sensor-label`: only
+//       that sensor's scans read the labels.
 //   rawlog_points marked <in> <out> <labels>
 //       mark mode: geometry byte-identical, the pixelLabels bit "dynamic" set on exactly the
 //       labelled pixels of each sweep.
@@ -28,11 +30,11 @@
 #include <mrpt/obs/CObservationVelodyneScan.h>
 
 #include <algorithm>
-#include <cstdint>
-#include <cstdlib>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <set>
@@ -147,6 +149,7 @@ int partition(const std::string& in, const std::string& out, const Labels& label
   pairUp(a, b);
   std::size_t total = 0, kept = 0, removed = 0, split_scans = 0, label_checked = 0;
   std::size_t unlabelled_untouched = 0, first_changed = SIZE_MAX, last_changed = 0;
+  std::size_t label_counted = 0, label_points = 0;  ///< unorganized scans checked by count
   std::set<std::string> classes;
   for (std::size_t i = 0; i < a.size(); i++) {
     const std::string where = "scan " + std::to_string(i) + " (entry " +
@@ -174,33 +177,42 @@ int partition(const std::string& in, const std::string& out, const Labels& label
     if (const auto* sweep = labels.sweepFor(*a[i].obs)) {
       const auto* sa = dynamic_cast<const CObservation3DRangeScan*>(a[i].obs.get());
       const auto* sb = dynamic_cast<const CObservation3DRangeScan*>(b[i].obs.get());
-      if (!sa || !sb) throw Failure(where + ": a label file is checked on range scans only");
-      // The labelled pixels' points, from the input's pixel indices.
-      std::vector<P3> on_labels;
-      const std::set<std::uint32_t> px(sweep->pixels.begin(), sweep->pixels.end());
-      const auto W = static_cast<std::uint32_t>(sa->rangeImage.cols());
-      for (std::size_t k = 0; k < sa->points3D_x.size(); k++)
-        if (px.count(sa->points3D_idxs_y[k] * W + sa->points3D_idxs_x[k]))
-          on_labels.push_back({sa->points3D_x[k], sa->points3D_y[k], sa->points3D_z[k]});
-      std::sort(on_labels.begin(), on_labels.end());
-      if (on_labels != gone)
-        throw Failure(where + ": removed " + std::to_string(gone.size()) + " points, the labels' " +
-                      "pixels hold " + std::to_string(on_labels.size()));
-      const auto layer = sb->rangeImageOtherLayers.find("dynamic");
-      for (int r = 0; r < sa->rangeImage.rows(); r++)
-        for (int c = 0; c < sa->rangeImage.cols(); c++) {
-          const bool lab = px.count(static_cast<std::uint32_t>(r) * W + static_cast<std::uint32_t>(c));
-          const auto raw = sa->rangeImage(r, c);
-          const auto now = sb->rangeImage(r, c);
-          const auto moved = layer == sb->rangeImageOtherLayers.end()
-                                 ? 0u
-                                 : layerAt(layer->second, static_cast<int>(W), r, c);
-          if (lab ? (now != 0 || moved != raw) : (now != raw || moved != 0))
-            throw Failure(where + ": pixel (" + std::to_string(r) + ", " + std::to_string(c) +
-                          ") range " + std::to_string(raw) + " -> " + std::to_string(now) +
-                          ", layer " + std::to_string(moved) + (lab ? " (labelled)" : ""));
-        }
-      label_checked++;
+      if (!sa || !sb) {  // no pixel per point in the raw object: the counts must be equal
+        if (gone.size() != sweep->pixels.size())
+          throw Failure(where + ": removed " + std::to_string(gone.size()) + " points, the " +
+                        "sweep labels " + std::to_string(sweep->pixels.size()) + " pixels");
+        label_counted++;
+        label_points += gone.size();
+      } else {
+        // The labelled pixels' points, from the input's pixel indices.
+        std::vector<P3> on_labels;
+        const std::set<std::uint32_t> px(sweep->pixels.begin(), sweep->pixels.end());
+        const auto W = static_cast<std::uint32_t>(sa->rangeImage.cols());
+        for (std::size_t k = 0; k < sa->points3D_x.size(); k++)
+          if (px.count(sa->points3D_idxs_y[k] * W + sa->points3D_idxs_x[k]))
+            on_labels.push_back({sa->points3D_x[k], sa->points3D_y[k], sa->points3D_z[k]});
+        std::sort(on_labels.begin(), on_labels.end());
+        if (on_labels != gone)
+          throw Failure(where + ": removed " + std::to_string(gone.size()) +
+                        " points, the labels' " + "pixels hold " +
+                        std::to_string(on_labels.size()));
+        const auto layer = sb->rangeImageOtherLayers.find("dynamic");
+        for (int r = 0; r < sa->rangeImage.rows(); r++)
+          for (int c = 0; c < sa->rangeImage.cols(); c++) {
+            const bool lab =
+                px.count(static_cast<std::uint32_t>(r) * W + static_cast<std::uint32_t>(c));
+            const auto raw = sa->rangeImage(r, c);
+            const auto now = sb->rangeImage(r, c);
+            const auto moved = layer == sb->rangeImageOtherLayers.end()
+                                   ? 0u
+                                   : layerAt(layer->second, static_cast<int>(W), r, c);
+            if (lab ? (now != 0 || moved != raw) : (now != raw || moved != 0))
+              throw Failure(where + ": pixel (" + std::to_string(r) + ", " + std::to_string(c) +
+                            ") range " + std::to_string(raw) + " -> " + std::to_string(now) +
+                            ", layer " + std::to_string(moved) + (lab ? " (labelled)" : ""));
+          }
+        label_checked++;
+      }
     } else if (labels.file && (labels.only.empty() || a[i].obs->sensorLabel == labels.only)) {
       if (!gone.empty())
         throw Failure(where + ": no sweep in the label file at its time, yet " +
@@ -217,12 +229,16 @@ int partition(const std::string& in, const std::string& out, const Labels& label
   }
   std::string cls;
   for (const auto& c : classes) cls += (cls.empty() ? "" : ", ") + c;
-  std::printf("partition: %zu scans (%s): %zu points = %zu kept + %zu removed; %zu split clouds "
-              "hold exactly the removed points; %zu scans removed exactly their labelled pixels, "
-              "%zu scans without a sweep untouched",
-              a.size(), cls.c_str(), total, kept, removed, split_scans, label_checked,
-              unlabelled_untouched);
+  std::printf(
+      "partition: %zu scans (%s): %zu points = %zu kept + %zu removed; %zu split clouds "
+      "hold exactly the removed points; %zu scans removed exactly their labelled pixels, "
+      "%zu scans without a sweep untouched",
+      a.size(), cls.c_str(), total, kept, removed, split_scans, label_checked,
+      unlabelled_untouched);
   if (removed) std::printf("; points removed in entries %zu..%zu", first_changed, last_changed);
+  if (label_counted)
+    std::printf("; %zu unorganized scans removed as many points as their labelled pixels (%zu)",
+                label_counted, label_points);
   std::printf("\n");
   return 0;
 }
@@ -278,7 +294,8 @@ int marked(const std::string& in, const std::string& out, const Labels& labels) 
     const int bit = sb->pixelLabels->checkLabelNameExistence("dynamic");
     if (bit < 0) throw Failure(where + ": no label named 'dynamic'");
     const std::set<std::uint32_t> px(sweep->pixels.begin(), sweep->pixels.end());
-    const int H = static_cast<int>(sa->rangeImage.rows()), W = static_cast<int>(sa->rangeImage.cols());
+    const int H = static_cast<int>(sa->rangeImage.rows()),
+              W = static_cast<int>(sa->rangeImage.cols());
     for (int r = 0; r < H; r++)
       for (int c = 0; c < W; c++) {
         const bool lab = px.count(static_cast<std::uint32_t>(r * W + c)) > 0;
@@ -312,15 +329,14 @@ int same(const std::string& x, const std::string& y) {
     const auto W = static_cast<std::size_t>(sa->rangeImage.cols());
     std::map<std::size_t, P3> pa;
     for (std::size_t k = 0; k < sa->points3D_x.size(); k++)
-      pa[sa->points3D_idxs_y[k] * W + sa->points3D_idxs_x[k]] = {sa->points3D_x[k],
-                                                                 sa->points3D_y[k],
-                                                                 sa->points3D_z[k]};
+      pa[sa->points3D_idxs_y[k] * W + sa->points3D_idxs_x[k]] = {
+          sa->points3D_x[k], sa->points3D_y[k], sa->points3D_z[k]};
     for (std::size_t k = 0; k < sb->points3D_x.size(); k++) {
       const auto it = pa.find(sb->points3D_idxs_y[k] * W + sb->points3D_idxs_x[k]);
       if (it == pa.end()) throw Failure(where + ": a point on a pixel that had none");
-      const double d = std::hypot(it->second[0] - sb->points3D_x[k],
-                                  it->second[1] - sb->points3D_y[k],
-                                  it->second[2] - sb->points3D_z[k]);
+      const double d =
+          std::hypot(it->second[0] - sb->points3D_x[k], it->second[1] - sb->points3D_y[k],
+                     it->second[2] - sb->points3D_z[k]);
       worst = std::max(worst, d);
       if (d > 1e-3)
         throw Failure(where + ": a point " + std::to_string(d) + " m from the original");
