@@ -233,9 +233,9 @@ ego_error() {
 # --consistency (eval::MapConsistency, top view written next to the rawlog; KITTI-derived, CC
 # BY-NC-SA: never commit it) and --check-ego (agreement with MRPT's 3D ICP).
 # A recording whose folder is absent is skipped with a message.
-REALDATA_DIR="${DYNOBJ_REALDATA:-$DYNOBJ_ROOT/../shared/realdata}"
+REALDATA_DIR="${DYNOBJ_REALDATA:-$DYNOBJ_ROOT/../shared/realdata}"  # DYNOBJ_REALDATA: elsewhere
 realdata() {
-  local dir="$OUT/realdata" md="$OUT/realdata.md" name src log
+  local dir="$OUT/realdata" md="$OUT/realdata.md" name src txt
   mkdir -p "$dir"
   {
     echo "<!-- made by: ${DYNOBJ_ACCURACY_CONFIG:+DYNOBJ_ACCURACY_CONFIG=$(basename "$CONFIG") }scripts/accuracy.sh --realdata -->"
@@ -266,12 +266,12 @@ realdata() {
       "$BIN/dynobj-import" -i "$src" -o "$base.rawlog" -q > /dev/null
       rawlog="$base.rawlog"
     fi
-    log="$base.txt"
-    "$BIN/dynobj-detect" -i "$rawlog" -c "$CONFIG" --consistency "$base.png" --check-ego > "$log"
+    txt="$base.txt"
+    "$BIN/dynobj-detect" -i "$rawlog" -c "$CONFIG" --consistency "$base.png" --check-ego > "$txt"
     # "consistency: 22 sweeps, 2541212 points, flagged 3.87 %: on static structure (suspicious)
     #  6.4 %, transient 65.6 %, undecided 28.0 %; unflagged but transient ~58000 points (...)"
     local c sweeps flagged susp trans missed
-    c=$(grep -m1 '^  consistency: ' "$log")
+    c=$(grep -m1 '^  consistency: ' "$txt")
     sweeps=$(sed -E 's/.*consistency: ([0-9]+) sweeps.*/\1/' <<< "$c")
     flagged=$(sed -E 's/.*flagged ([0-9.]+) %:.*/\1/' <<< "$c")
     susp=$(sed -E 's/.*\(suspicious\) ([0-9.]+) %.*/\1/' <<< "$c")
@@ -280,7 +280,7 @@ realdata() {
     # "ICP check: ... both: 21, agree within 0.10 m / 1.0 deg on 21 (100.0 %); difference
     #  translation median 0.019 m p95 ..., rotation median 0.124 deg p95 ..."
     local i both agree dt dr
-    i=$(grep -m1 '^  ICP check: ' "$log")
+    i=$(grep -m1 '^  ICP check: ' "$txt")
     both=$(sed -E 's/.*both: ([0-9]+),.*/\1/' <<< "$i")
     agree=$(sed -E 's/.* on ([0-9]+) \([0-9.]+ %\); difference.*/\1/' <<< "$i")
     dt=$(sed -E 's/.*translation median ([0-9.]+) m.*/\1/' <<< "$i")
