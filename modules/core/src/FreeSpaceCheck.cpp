@@ -119,7 +119,9 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   const long past = std::max(chain.oldest(), current - p_.lookback);
   const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
   const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift);
-  d.static_surface = d.rigid ? !e.provesMotion(p_) : !e.supportsMotion(p_);
+  // A rigid mover exempted from Eq. (23), and a young track judged on a short window, must prove
+  // their motion; any other candidate is only refuted by the evidence.
+  d.static_surface = (d.rigid || d.early) ? !e.provesMotion(p_) : !e.supportsMotion(p_);
 }
 
 }  // namespace dynobj::core

@@ -11,6 +11,9 @@ namespace dynobj::core {
 
 void MovementParams::visit(ParamVisitor& v) {
   v.value("window", window);
+  v.value("min_window", min_window);
+  v.value("stop_window", stop_window);
+  v.value("stop_speed", stop_speed);
   v.value("min_displacement", min_displacement);
   v.value("min_straightness", min_straightness);
   v.degrees("long_object_angle", long_object_angle);
@@ -22,6 +25,9 @@ void MovementParams::visit(ParamVisitor& v) {
 
 void MovementParams::validate() const {
   requireInRange("window", window, 2, 1000);
+  requireInRange("min_window", min_window, 2, 1000);  // >= window: off
+  requireInRange("stop_window", stop_window, 2, 1000);  // > window: off
+  requireInRange("stop_speed", stop_speed, 0, 100);
   requirePositive("min_displacement", min_displacement);
   requireInRange("min_straightness", min_straightness, 0, 1);
   requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
@@ -59,8 +65,11 @@ bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b,
 MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChain& chain,
                                            const Cluster& cluster, double dt) const {
   MovementDecision d;
-  const auto k = static_cast<std::size_t>(p_.window);
-  if (window.size() < k) return d;
+  // The last k observations; beyond the paper, a younger track is judged on the ones it has
+  // (at least min_window) with the same epsilon_d, so only a faster object passes early.
+  const auto k = std::min(window.size(), static_cast<std::size_t>(p_.window));
+  if (k < static_cast<std::size_t>(std::min(p_.min_window, p_.window))) return d;
+  d.early = k < static_cast<std::size_t>(p_.window);
   const long first = window[window.size() - k].frame, last = window.back().frame;
   if (!chain.contains(first) || !chain.reliable(first, last)) return d;
   d.enough_history = true;
@@ -75,9 +84,18 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   for (std::size_t j = 1; j < cw.size(); j++) d.path += (cw[j] - cw[j - 1]).norm();  // Eq. (20)
   const double duration = std::max(1e-6, static_cast<double>(last - first) * dt);
   d.speed = d.displacement / duration;
-  d.velocity = chain.between(first, last).linear().transpose() * (cw.back() - cw.front()) / duration;
+  d.velocity =
+      chain.between(first, last).linear().transpose() * (cw.back() - cw.front()) / duration;
   d.candidate = d.displacement > p_.min_displacement && d.speed <= p_.max_speed;
-  d.drift = d.path <= 0 || d.displacement / d.path < p_.min_straightness;
+  // Beyond the paper: the window lags a stop by up to k frames; its last few observations do not.
+  const auto m = static_cast<std::size_t>(p_.stop_window);
+  if (p_.stop_speed > 0 && k >= m) {
+    const long from = window[window.size() - m].frame;
+    const double recent = std::max(1e-6, static_cast<double>(last - from) * dt);
+    d.stopped = (cw.back() - cw[k - m]).norm() / recent < p_.stop_speed;
+  }
+  const double straightness = d.early ? std::sqrt(p_.min_straightness) : p_.min_straightness;
+  d.drift = d.path <= 0 || d.displacement / d.path < straightness;
 
   // Eq. (21)-(23), for clusters at least this elongated and long (by default every cluster: a
   // compact cluster's PCA axis is noise, but a rigid mover is exempt once free space proves it).

@@ -130,14 +130,18 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
     t.dynamic = moving;
     return;
   }
-  if (moving) {
+  if (d.stopped && t.dynamic) {  // a clear stop: released at once, hysteresis would lag it
+    t.dynamic = false;
+    t.positives = 0;
+    t.negatives = p_.release_frames;
+  } else if (moving) {
     t.positives++;
     t.negatives = 0;
     if (t.positives >= (t.settled ? p_.settled_confirm_frames : p_.confirm_frames)) {
       t.dynamic = true;
       t.settled = false;
     }
-  } else if (d.enough_history) {  // no verdict without a full window
+  } else if (d.enough_history && !d.early) {  // a short window proves no standstill
     t.negatives++;
     t.positives = 0;
     if (t.negatives >= p_.release_frames) t.dynamic = false;

@@ -91,6 +91,7 @@ Cluster compact() {
 TEST(MovementAnalyzer, MovingClusterFlaggedAfterKFramesStaticWithJitterNot) {
   MovementParams p;
   p.window = 5;
+  p.min_window = 5;  // the paper: a full window before any verdict
   p.min_displacement = 0.25;
   const MovementAnalyzer m(p);
   const FrameChain chain = walkingChain(10);
@@ -112,6 +113,103 @@ TEST(MovementAnalyzer, MovingClusterFlaggedAfterKFramesStaticWithJitterNot) {
     }
     EXPECT_FALSE(ds.moving()) << "frame " << i << " f=" << ds.displacement << " fa=" << ds.path;
   }
+}
+
+TEST(MovementAnalyzer, YoungTrackJudgedEarlyOnlyWhenItAlreadyTravelledEpsilonD) {
+  MovementParams p;
+  p.window = 5;
+  p.min_window = 3;
+  p.min_displacement = 0.25;
+  const MovementAnalyzer m(p);
+  const FrameChain chain = walkingChain(10);
+  Window fast, slow;
+  for (long i = 0; i < 6; i++) {
+    // Sensor moves +0.1 m/frame along X (walkingChain); world velocities 0.15 and 0.05 m/frame.
+    fast.emplace_back(i, V3(5 - 0.1 * i, 0.15 * i, 0));
+    slow.emplace_back(i, V3(5 - 0.1 * i, 0.05 * i, 0));
+    if (fast.size() > 5) fast.erase(fast.begin()), slow.erase(slow.begin());
+    const auto df = m.analyse(fast, chain, compact(), 0.1);
+    const auto ds = m.analyse(slow, chain, compact(), 0.1);
+    EXPECT_EQ(df.enough_history, i >= 2) << "frame " << i;
+    EXPECT_EQ(df.early, i >= 2 && i < 4) << "frame " << i;
+    // fast: f = 0.30 m after 3 observations (i = 2): > epsilon_d already.
+    EXPECT_EQ(df.moving(), i >= 2) << "frame " << i;
+    if (i == 2) {
+      EXPECT_NEAR(df.displacement, 0.30, 1e-9);
+    }
+    // slow: f = 0.05 (i - first) never reaches 0.25 within 5 observations (0.20 at most).
+    EXPECT_FALSE(ds.moving()) << "frame " << i;
+  }
+}
+
+TEST(MovementAnalyzer, AStopShowsInTheLastObservationsBeforeTheWindowForgetsTheWalk) {
+  MovementParams p;
+  p.window = 5;
+  p.min_window = 5;
+  p.stop_window = 3;
+  p.stop_speed = 0.3;
+  const FrameChain chain = walkingChain(10);
+  Window w;
+  // World y: 0, 0.15, 0.30, 0.30, 0.30 (walks 0.3 m in two frames, then stands two frames).
+  for (long i = 0; i < 5; i++)
+    w.emplace_back(
+        i, V3(5 - 0.1 * static_cast<double>(i), 0.15 * static_cast<double>(std::min(i, 2L)), 0));
+  const auto d = MovementAnalyzer(p).analyse(w, chain, compact(), 0.1);
+  EXPECT_NEAR(d.displacement, 0.30, 1e-9);  // the window alone still says "moving"
+  EXPECT_TRUE(d.candidate);
+  EXPECT_TRUE(d.stopped);  // the last 3 observations did not move at all
+  EXPECT_FALSE(d.moving());
+  p.stop_speed = 0;  // off: the paper's verdict
+  const auto paper = MovementAnalyzer(p).analyse(w, chain, compact(), 0.1);
+  EXPECT_FALSE(paper.stopped);
+  EXPECT_TRUE(paper.moving());
+  // A walker at 1.5 m/s is not "stopped" (0.3 m over the last 0.2 s).
+  Window walk;
+  for (long i = 0; i < 5; i++)
+    walk.emplace_back(i, V3(5 - 0.1 * static_cast<double>(i), 0.15 * static_cast<double>(i), 0));
+  p.stop_speed = 0.3;
+  EXPECT_TRUE(MovementAnalyzer(p).analyse(walk, chain, compact(), 0.1).moving());
+}
+
+TEST(TrackManager, AStoppedTrackIsReleasedAtOnce) {
+  TrackingParams p;
+  p.confirm_frames = 2;
+  p.release_frames = 4;
+  TrackManager tm(p, 5);
+  Track t;
+  MovementDecision yes, no, stopped;
+  yes.enough_history = yes.candidate = true;
+  no.enough_history = true;
+  stopped.enough_history = stopped.candidate = stopped.stopped = true;
+  tm.decide(t, yes);
+  tm.decide(t, yes);
+  ASSERT_TRUE(t.dynamic);
+  tm.decide(t, no);  // one static verdict: hysteresis keeps it
+  EXPECT_TRUE(t.dynamic);
+  tm.decide(t, stopped);  // a clear stop: released now, not after 4 verdicts
+  EXPECT_FALSE(t.dynamic);
+  tm.decide(t, yes);  // and it must be confirmed again
+  EXPECT_FALSE(t.dynamic);
+  tm.decide(t, yes);
+  EXPECT_TRUE(t.dynamic);
+}
+
+TEST(TrackManager, AnEarlyStaticVerdictIsNoVerdict) {
+  TrackingParams p;
+  p.settled_frames = 1;
+  TrackManager tm(p, 5);
+  Track t;
+  MovementDecision early_static;
+  early_static.enough_history = true;
+  early_static.early = true;
+  tm.decide(t, early_static);
+  EXPECT_EQ(t.negatives, 0);  // too short to prove a standstill
+  EXPECT_FALSE(t.settled);
+  MovementDecision full_static;
+  full_static.enough_history = true;
+  tm.decide(t, full_static);
+  EXPECT_EQ(t.negatives, 1);
+  EXPECT_TRUE(t.settled);
 }
 
 TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {

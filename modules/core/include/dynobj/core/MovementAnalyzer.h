@@ -22,7 +22,14 @@
 namespace dynobj::core {
 
 struct MovementParams : public StageParams {
-  int window = 5;                                ///< k: observations in the sliding window
+  int window = 5;       ///< k: observations in the sliding window
+  int min_window = 5;   ///< fewer observations than k, but at least this many, already give a
+                        ///< "moving" verdict when they show epsilon_d of straight travel (a fast
+                        ///< object is flagged sooner; beyond the paper). >= window: off (default)
+                        ///< (3: more recall, more static points flagged; docs/algorithm.md §7c)
+  int stop_window = 3;  ///< beyond the paper: a track whose last stop_window observations ...
+  double stop_speed = 0.3;  ///< ... moved slower than this [m/s] has stopped: not moving, and a
+                            ///< dynamic track is released at once (no hysteresis); 0 = off
   double min_displacement = 0.25;                ///< epsilon_d [m] over the window
   double min_straightness = 0.5;                 ///< epsilon_o: f / f_a below this is drift
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
@@ -53,19 +60,21 @@ struct WindowEntry {
 using Window = std::vector<WindowEntry>;
 
 struct MovementDecision {
-  bool enough_history = false;  ///< a full window of reliable frames
+  bool enough_history = false;  ///< at least min_window observations over reliable frames
+  bool early = false;           ///< judged on fewer than k observations: only "moving" counts
+  bool stopped = false;         ///< its last stop_window observations moved slower than stop_speed
   double displacement = 0;      ///< f, Eq. (19) [m]
   double path = 0;              ///< f_a, Eq. (20) [m]
   double angle = M_PI / 2;      ///< theta, Eq. (23) [rad], pi/2 when not tested
   double speed = 0;             ///< f / window duration [m/s]
   Eigen::Vector3d velocity{0, 0, 0};  ///< f's vector / window duration, current frame [m/s]
-  bool candidate = false;       ///< f > epsilon_d
-  bool drift = false;           ///< f / f_a < epsilon_o
-  bool long_object = false;     ///< elongated and moving along itself
-  bool rigid = false;           ///< elongated, and both its ends moved with the centroid
-  bool static_surface = false;  ///< set by FreeSpaceCheck: its space was occupied already
+  bool candidate = false;             ///< f > epsilon_d
+  bool drift = false;                 ///< f / f_a < epsilon_o
+  bool long_object = false;           ///< elongated and moving along itself
+  bool rigid = false;                 ///< elongated, and both its ends moved with the centroid
+  bool static_surface = false;        ///< set by FreeSpaceCheck: its space was occupied already
   bool moving() const {
-    return enough_history && candidate && !drift && !long_object && !static_surface;
+    return enough_history && candidate && !drift && !long_object && !static_surface && !stopped;
   }
 };
 
