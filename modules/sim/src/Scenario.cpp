@@ -4,6 +4,7 @@
 #include <dynobj/core/Config.h>
 #include <mrpt/containers/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -40,6 +41,50 @@ void applyOverride(::mrpt::containers::yaml& doc, const std::string& key,
       node = &map[k];
     }
   }
+}
+
+/// Byte offset of the first byte that is not well-formed UTF-8 (RFC 3629), or npos. YAML text
+/// must be UTF-8, and libfyaml 0.8 (under MRPT's yaml) loops forever on a malformed byte inside
+/// a `%` directive (found by fuzz_scenario_yaml): the text is checked before it is parsed.
+std::size_t firstInvalidUtf8(const std::string& t) {
+  const auto* b = reinterpret_cast<const unsigned char*>(t.data());
+  const std::size_t n = t.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned c = b[i];
+    std::size_t len = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (c < 0x80)
+      len = 1;
+    else if (c >= 0xC2 && c <= 0xDF)
+      len = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+      len = 3;
+      if (c == 0xE0) lo = 0xA0;  // no overlong form
+      if (c == 0xED) hi = 0x9F;  // no surrogate
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      len = 4;
+      if (c == 0xF0) lo = 0x90;
+      if (c == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
+    } else {
+      return i;
+    }
+    if (i + len > n) return i;
+    for (std::size_t k = 1; k < len; k++) {
+      const unsigned d = b[i + k];
+      if (k == 1 ? (d < lo || d > hi) : (d < 0x80 || d > 0xBF)) return i;
+    }
+    i += len;
+  }
+  return std::string::npos;
+}
+
+void requireUtf8(const std::string& text, const std::string& what) {
+  const std::size_t at = firstInvalidUtf8(text);
+  if (at == std::string::npos) return;
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+  throw ScenarioError(what + ": not valid UTF-8 at line " + std::to_string(line) + " (byte " +
+                      std::to_string(at) + "); YAML text must be UTF-8");
 }
 
 }  // namespace
@@ -97,6 +142,8 @@ std::vector<Part> actorBody(ActorClass cls, double height, const Material& mater
 Scenario Scenario::fromYamlText(const std::string& text, const std::string& share_dir,
                                 const std::map<std::string, std::string>& overrides,
                                 const std::string& source) {
+  requireUtf8(text, source);
+  for (const auto& [key, value] : overrides) requireUtf8(key + "=" + value, "override");
   ::mrpt::containers::yaml doc;
   try {
     doc = ::mrpt::containers::yaml::FromText(text);

@@ -34,6 +34,20 @@ TEST(Scenario, MinimalAndOverrides) {
   EXPECT_EQ(o.seed, 3u);
 }
 
+TEST(Scenario, TextThatIsNotUtf8IsRefusedBeforeParsing) {
+  // fuzz_scenario_yaml: a malformed byte inside a `%` directive made libfyaml loop forever.
+  EXPECT_EQ(errorOf("% x\xc9 y\n"),
+            "t.yaml: not valid UTF-8 at line 1 (byte 3); YAML text must be UTF-8");
+  EXPECT_EQ(errorOf(kMinimal + "# caf\xc3\n"),
+            "t.yaml: not valid UTF-8 at line 5 (byte 108); YAML text must be UTF-8");
+  EXPECT_NE(errorOf(kMinimal + "# caf\xed\xa0\x80\n").find("not valid UTF-8"),
+            std::string::npos);  // surrogate
+  EXPECT_EQ(errorOf(kMinimal + "# caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x97\n"),
+            "");  // well-formed
+  EXPECT_EQ(errorOf(kMinimal, {{"name", "a\xff"}}),
+            "override: not valid UTF-8 at line 1 (byte 6); YAML text must be UTF-8");
+}
+
 TEST(Scenario, ActorsFromGroups) {
   const Scenario s = Scenario::fromYamlText(
       kMinimal +
