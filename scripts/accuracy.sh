@@ -29,10 +29,7 @@ fi
 source "$HERE/common.sh"
 
 ensure_packages jq
-BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
-[ "${DYNOBJ_SKIP_BUILD:-0}" = 1 ] || build_project "$BUILD_DIR"  # DYNOBJ_SKIP_BUILD=1: use it as built
-BIN="$BUILD_DIR/apps"
-OUT="${DYNOBJ_ACCURACY_OUT:-$DYNOBJ_ROOT/out/accuracy}"
+use_apps  # BUILD_DIR, BIN, OUT (common.sh; DYNOBJ_SKIP_BUILD=1: use the build as it is)
 SCEN="$DYNOBJ_ROOT/share/dynobj/scenarios"
 # DYNOBJ_ACCURACY_CONFIG: another detector INI (e.g. one holding "[ego_refinement] enabled = false")
 CONFIG="${DYNOBJ_ACCURACY_CONFIG:-$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini}"

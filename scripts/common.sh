@@ -42,3 +42,13 @@ build_project() {
   log "building ${dir} ($(nproc) jobs)"
   cmake --build "$dir" -j "$(nproc)"
 }
+
+# use_apps: the accuracy scripts' build. Sets BUILD_DIR (DYNOBJ_BUILD_DIR, default build/), builds
+# it unless DYNOBJ_SKIP_BUILD=1 (then it is used as built), sets BIN (its apps/) and OUT
+# (DYNOBJ_ACCURACY_OUT, default out/accuracy/).
+use_apps() {
+  BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
+  [ "${DYNOBJ_SKIP_BUILD:-0}" = 1 ] || build_project "$BUILD_DIR"
+  BIN="$BUILD_DIR/apps"
+  OUT="${DYNOBJ_ACCURACY_OUT:-$DYNOBJ_ROOT/out/accuracy}"
+}

@@ -28,10 +28,7 @@ if [ $# -gt 0 ]; then
   done
 fi
 ensure_packages time
-BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
-[ "${DYNOBJ_SKIP_BUILD:-0}" = 1 ] || build_project "$BUILD_DIR"  # DYNOBJ_SKIP_BUILD=1: use it as built
-BIN="$BUILD_DIR/apps"
-OUT="${DYNOBJ_ACCURACY_OUT:-$DYNOBJ_ROOT/out/accuracy}"
+use_apps  # BUILD_DIR, BIN, OUT (common.sh; DYNOBJ_SKIP_BUILD=1: use the build as it is)
 DIR="$OUT/mapclean"
 SHARE="$DYNOBJ_ROOT/share/dynobj"
 MD="$OUT/mapclean.md"
