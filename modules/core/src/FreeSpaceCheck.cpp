@@ -15,6 +15,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("min_free_ratio", min_free_ratio);
   v.value("min_evidence", min_evidence);
   v.value("lookback", lookback);
+  v.value("min_solid_ratio", min_solid_ratio);
 }
 
 void FreeSpaceParams::validate() const {
@@ -23,6 +24,7 @@ void FreeSpaceParams::validate() const {
   requireInRange("min_free_ratio", min_free_ratio, 0, 1);
   requireInRange("min_evidence", min_evidence, 0, 1000000);
   requireInRange("lookback", lookback, 1, 1000);
+  requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
 }
 
 bool FreeSpaceEvidence::supportsMotion(const FreeSpaceParams& p) const {
@@ -73,6 +75,44 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 
 }  // namespace
 
+double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpaceParams& p) {
+  const int H = frame.rows(), W = frame.cols();
+  // Fewer than 3 columns wide (a far person): every pixel is on the outline, none inside.
+  int columns[2] = {-1, -1}, distinct = 0;
+  for (int px : cluster.pixels) {
+    const int c = px % W;
+    if (c == columns[0] || c == columns[1]) continue;
+    if (distinct == 2) {
+      distinct = 3;
+      break;
+    }
+    columns[distinct++] = c;
+  }
+  if (distinct < 3) return 1.0;
+  int pixels = 0, solid = 0;
+  for (int px : cluster.pixels) {
+    const int r = px / W, c = px % W;
+    const float range = frame.range(r, c);
+    if (range <= 0) continue;
+    const double tol = p.margin + p.range_factor * range;
+    int valid = 0, agree = 0;
+    for (int dr = -1; dr <= 1; ++dr) {
+      const int rr = r + dr;
+      if (rr < 0 || rr >= H) continue;
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (dr == 0 && dc == 0) continue;
+        const float n = frame.range(rr, (c + dc + W) % W);
+        if (n <= 0) continue;
+        valid++;
+        if (std::abs(n - range) <= tol) agree++;
+      }
+    }
+    pixels++;
+    if (valid > 0 && 2 * agree >= valid) solid++;
+  }
+  return pixels > 0 ? static_cast<double>(solid) / pixels : 1.0;
+}
+
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,
                                            const Cluster& cluster, long past,
                                            const FrameChain& chain,
@@ -122,6 +162,7 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   // A rigid mover exempted from Eq. (23), and a young track judged on a short window, must prove
   // their motion; any other candidate is only refuted by the evidence.
   d.static_surface = (d.rigid || d.early) ? !e.provesMotion(p_) : !e.supportsMotion(p_);
+  d.porous = p_.min_solid_ratio > 0 && solidRatio(frame, cluster, p_) < p_.min_solid_ratio;
 }
 
 }  // namespace dynobj::core

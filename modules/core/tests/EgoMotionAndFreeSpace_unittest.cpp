@@ -122,3 +122,83 @@ TEST(FreeSpaceCheck, ObjectMovingAwayProvesMotionByTheSpaceItLeft) {
   const auto stayed = check.evidence(f1, 1, c, 0, chain, Eigen::Vector3d(0.05, 0, 0));
   EXPECT_FALSE(stayed.provesMotion(check.params()));
 }
+
+namespace {
+
+/// A 4 x 8 frame whose range at (r, c) is depth(r, c) (0 = no return); the points' coordinates
+/// do not matter to solidRatio.
+template <typename Depth>
+LidarFrame depthFrame(Depth depth) {
+  LidarFrame f(dynobj::test::smallSensor(4, 8));
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 8; c++)
+      if (const float d = depth(r, c); d > 0) f.setPixel(r, c, d, 1, cv::Vec3f(d, 0, 0), r * 8 + c);
+  return f;
+}
+
+Cluster pixelsWhere(const LidarFrame& f, float lo, float hi) {
+  Cluster k;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++)
+      if (f.range(r, c) >= lo && f.range(r, c) <= hi) k.pixels.push_back(r * f.cols() + c);
+  return k;
+}
+
+}  // namespace
+
+TEST(FreeSpaceCheck, SolidRatioTellsASurfaceFromFoliage) {
+  const FreeSpaceParams p;  // tolerance at 5 m: 0.3 + 0.02 x 5 = 0.4 m
+  // A block 3 columns wide at 5 m before a wall at 20 m: a corner pixel has 3 of 5 returning
+  // neighbours on the block, an edge pixel 5 of 8, a middle one 8 of 8: every pixel is solid.
+  const LidarFrame block = depthFrame([](int, int c) { return c >= 2 && c <= 4 ? 5 : 20; });
+  const Cluster b = pixelsWhere(block, 4, 6);
+  ASSERT_EQ(b.pixels.size(), 12u);
+  EXPECT_DOUBLE_EQ(solidRatio(block, b, p), 1.0);
+  // Its bottom row hidden by the wall: the two lower corners keep 3 of 8 (outline, not surface).
+  const LidarFrame cut = depthFrame([](int r, int c) { return c >= 2 && c <= 4 && r < 3 ? 5 : 20; });
+  EXPECT_DOUBLE_EQ(solidRatio(cut, pixelsWhere(cut, 4, 6), p), 7.0 / 9.0);
+  // Foliage: neighbouring returns 0.8 m or more apart in depth, but along one diagonal (2 of 8).
+  const LidarFrame leaves = depthFrame([](int r, int c) { return 5 + 0.8F * ((3 * r + c) % 4); });
+  const Cluster l = pixelsWhere(leaves, 4, 8);
+  ASSERT_EQ(l.pixels.size(), 32u);
+  EXPECT_DOUBLE_EQ(solidRatio(leaves, l, p), 0.0);
+  // A solid strip (8 pixels) and 4 isolated returns with no returning neighbour: 8 / 12.
+  const LidarFrame half = depthFrame([](int r, int c) {
+    if (c <= 1) return 5.0F;                           // a solid strip, columns 0-1
+    return (c == 4 || c == 6) && r % 2 == 0 ? 5.0F : 0.0F;  // isolated returns
+  });
+  const Cluster h = pixelsWhere(half, 4, 6);
+  ASSERT_EQ(h.pixels.size(), 12u);
+  EXPECT_DOUBLE_EQ(solidRatio(half, h, p), 8.0 / 12.0);
+  EXPECT_DOUBLE_EQ(solidRatio(half, Cluster{}, p), 1.0);  // nothing to judge: not porous
+  // Two columns wide (a far person): no pixel inside the outline, no verdict, however ragged.
+  Cluster narrow;
+  for (int px : l.pixels)
+    if (px % 8 == 3 || px % 8 == 4) narrow.pixels.push_back(px);
+  ASSERT_EQ(narrow.pixels.size(), 8u);
+  EXPECT_DOUBLE_EQ(solidRatio(leaves, narrow, p), 1.0);
+  Cluster wider = narrow;
+  for (int px : l.pixels)
+    if (px % 8 == 5) wider.pixels.push_back(px);
+  EXPECT_DOUBLE_EQ(solidRatio(leaves, wider, p), 0.0);
+}
+
+TEST(FreeSpaceCheck, ASeenThroughCandidateIsNotAMover) {
+  const LidarFrame leaves = depthFrame([](int r, int c) { return 5 + 0.8F * ((3 * r + c) % 4); });
+  const Cluster l = pixelsWhere(leaves, 4, 8);
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  MovementDecision d;
+  d.enough_history = d.candidate = true;
+  ASSERT_TRUE(d.moving());
+  FreeSpaceCheck(FreeSpaceParams{}).review(leaves, 0, l, chain, 0.1, d);
+  EXPECT_TRUE(d.porous);
+  EXPECT_FALSE(d.moving());
+  FreeSpaceParams off;
+  off.min_solid_ratio = 0;  // the paper: no such test
+  MovementDecision kept;
+  kept.enough_history = kept.candidate = true;
+  FreeSpaceCheck(off).review(leaves, 0, l, chain, 0.1, kept);
+  EXPECT_FALSE(kept.porous);
+  EXPECT_TRUE(kept.moving());
+}

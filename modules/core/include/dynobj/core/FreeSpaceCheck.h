@@ -28,6 +28,10 @@ struct FreeSpaceParams : public StageParams {
   double min_free_ratio = 0.5;  ///< free / (free + occupied) needed to stay a moving candidate
   int min_evidence = 3;         ///< fewer decisive points: no verdict (the candidate is kept)
   int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept)
+  /// A candidate fewer of whose pixels than this lie on a solid surface (at least half of their
+  /// returning 8-neighbours within margin + range_factor x range) is seen through: foliage, not
+  /// a mover (0 = off). Beyond the paper (docs/algorithm.md 7b).
+  double min_solid_ratio = 0.3;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -40,6 +44,12 @@ struct FreeSpaceEvidence {
   /// Positively shown: at least min_evidence decisive points, enough of them free.
   bool provesMotion(const FreeSpaceParams& p) const;
 };
+
+/// Share of `cluster`'s pixels that lie on a solid surface of `frame`'s range image: at least half
+/// of their returning 8-neighbours (columns wrap) within margin + range_factor x range. A person or
+/// a car is solid but at its outline; porous foliage, seen into and through, is not. A cluster
+/// fewer than 3 columns wide has no inside to judge: 1.
+double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpaceParams& p);
 
 class FreeSpaceCheck {
  public:

@@ -73,8 +73,10 @@ struct MovementDecision {
   bool long_object = false;           ///< elongated and moving along itself
   bool rigid = false;                 ///< elongated, and both its ends moved with the centroid
   bool static_surface = false;        ///< set by FreeSpaceCheck: its space was occupied already
+  bool porous = false;                ///< set by FreeSpaceCheck: seen through (foliage)
   bool moving() const {
-    return enough_history && candidate && !drift && !long_object && !static_surface && !stopped;
+    return enough_history && candidate && !drift && !long_object && !static_surface && !porous &&
+           !stopped;
   }
 };
 
