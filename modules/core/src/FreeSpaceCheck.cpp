@@ -162,7 +162,9 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   // A rigid mover exempted from Eq. (23), and a young track judged on a short window, must prove
   // their motion; any other candidate is only refuted by the evidence.
   d.static_surface = (d.rigid || d.early) ? !e.provesMotion(p_) : !e.supportsMotion(p_);
-  d.porous = p_.min_solid_ratio > 0 && solidRatio(frame, cluster, p_) < p_.min_solid_ratio;
+  // Seen through: only asked of a candidate the evidence above left standing.
+  d.porous = !d.static_surface && p_.min_solid_ratio > 0 &&
+             solidRatio(frame, cluster, p_) < p_.min_solid_ratio;
 }
 
 }  // namespace dynobj::core
