@@ -13,7 +13,12 @@
 namespace dynobj::core {
 namespace {
 
-constexpr int kPad = 32;  ///< >= ORB's edgeThreshold / patchSize (31)
+/// ORB sees the image with kMargin pixels of its wrapped / reflected surroundings (its FAST
+/// detector scans only that region; keypoints stay off the margin, which is masked) and takes the
+/// pixels its patches (31 px) and blur need beyond it from the rest of the padding: the rows ORB
+/// scans are the image's plus 2 x 16, not 2 x 32.
+constexpr int kMargin = 16;                  ///< ORB's edgeThreshold; >= its half patch size (15)
+constexpr int kPad = kMargin + kMargin + 1;  ///< + ORB's own border (edgeThreshold + 1)
 
 /// Closed-form rigid transform (Umeyama, no scale) mapping src[i] onto dst[i].
 Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
@@ -87,7 +92,7 @@ void EgoMotionParams::validate() const {
 EgoMotionEstimator::EgoMotionEstimator(const EgoMotionParams& p)
     : p_(p), matcher_(cv::NORM_HAMMING), rng_(static_cast<unsigned>(p.seed)) {
   p_.validate();
-  orb_ = cv::ORB::create(p_.features, static_cast<float>(p_.scale_factor), p_.levels, 31, 0, 2,
+  orb_ = cv::ORB::create(p_.features, static_cast<float>(p_.scale_factor), p_.levels, kMargin, 0, 2,
                          cv::ORB::HARRIS_SCORE, 31, p_.fast_threshold);
 }
 
@@ -115,21 +120,22 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
     up_ = img8_;
     mask_up_ = mask_;
   }
-  // Room for ORB's 31 px border and patch: wrap left/right (360 deg scan), reflect top/bottom.
+  // Room for ORB's margin, patch and border: wrap left/right (360 deg scan), reflect top/bottom.
   cv::Mat tmp;
   cv::copyMakeBorder(up_, tmp, kPad, kPad, 0, 0, cv::BORDER_REFLECT_101);
   cv::copyMakeBorder(tmp, padded_, 0, 0, kPad, kPad, cv::BORDER_WRAP);
   cv::copyMakeBorder(mask_up_, mask_pad_, kPad, kPad, kPad, kPad, cv::BORDER_CONSTANT, 0);
   std::vector<cv::KeyPoint> kps;
   cv::Mat desc;
-  orb_->detectAndCompute(padded_, mask_pad_, kps, desc);
+  const cv::Rect seen(kPad - kMargin, kPad - kMargin, W + 2 * kMargin, H * up + 2 * kMargin);
+  orb_->detectAndCompute(padded_(seen), mask_pad_(seen), kps, desc);
   out.points.clear();
   out.pixels.clear();
   out.descriptors.release();
   std::vector<int> keep;
   for (std::size_t i = 0; i < kps.size(); i++) {
-    const int c = static_cast<int>(std::lround(kps[i].pt.x - kPad));
-    const int r = static_cast<int>(std::floor((kps[i].pt.y - kPad) / up));
+    const int c = static_cast<int>(std::lround(kps[i].pt.x - kMargin));
+    const int r = static_cast<int>(std::floor((kps[i].pt.y - kMargin) / up));
     if (r < 0 || r >= H || c < 0 || c >= W || !f.isValid(r, c)) continue;
     const cv::Vec3f& p = f.xyz(r, c);
     out.points.emplace_back(p[0], p[1], p[2]);

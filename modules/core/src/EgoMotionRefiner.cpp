@@ -14,6 +14,7 @@ void EgoRefinementParams::visit(ParamVisitor& v) {
   v.value("enabled", enabled);
   v.value("points", points);
   v.value("iterations", iterations);
+  v.value("coarse_iterations", coarse_iterations);
   v.value("max_distance", max_distance);
   v.value("final_distance", final_distance);
   v.value("huber", huber);
@@ -26,6 +27,7 @@ void EgoRefinementParams::visit(ParamVisitor& v) {
 void EgoRefinementParams::validate() const {
   requireInRange("points", points, 10, 10000000);
   requireInRange("iterations", iterations, 1, 100);
+  requireInRange("coarse_iterations", coarse_iterations, 0, 100);
   requirePositive("max_distance", max_distance);
   requirePositive("final_distance", final_distance);
   if (final_distance > max_distance)
@@ -38,6 +40,8 @@ void EgoRefinementParams::validate() const {
 }
 
 namespace {
+
+constexpr std::size_t kCoarseStride = 4;  ///< coarse steps use every 4th sampled point
 
 /// Normal of the range image at (r, c) from its four neighbours (columns wrap), or (0,0,0) when a
 /// neighbour is missing (range 0) or lies on another surface (range jump).
@@ -110,7 +114,12 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
     Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
     int n = 0;
-    for (const Eigen::Vector3d& p : pts) {
+    // Coarse to fine: the first steps, which only bring the estimate near, use a quarter of the
+    // points (and need a quarter of the partners); the last ones, which set it, use them all.
+    const std::size_t stride = it < p_.coarse_iterations ? kCoarseStride : 1;
+    const int needed = p_.min_correspondences / static_cast<int>(stride);
+    for (std::size_t i = 0; i < pts.size(); i += stride) {
+      const Eigen::Vector3d& p = pts[i];
       const Eigen::Vector3d q = T * p;  // into the previous frame
       int r, c;
       if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) continue;
@@ -132,12 +141,12 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
       n++;
     }
     out.correspondences = n;
-    if (n < p_.min_correspondences) return out;  // keep init, ok = false
+    if (n < needed) return out;  // keep init, ok = false
     const double lambda = p_.damping * H.trace() / 6.0;
     H.diagonal().array() += lambda;
     const Eigen::Matrix<double, 6, 1> xi = H.ldlt().solve(-g);
     T = expSE3(xi) * T;
-    if (xi.head<3>().norm() < 1e-6 && xi.tail<3>().norm() < 1e-5) break;
+    if (stride == 1 && xi.head<3>().norm() < 1e-6 && xi.tail<3>().norm() < 1e-5) break;
   }
   const Eigen::Isometry3d change = init.inverse() * T;
   if (change.translation().norm() > p_.max_correction ||

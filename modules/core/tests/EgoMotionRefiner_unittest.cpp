@@ -50,6 +50,29 @@ TEST(EgoMotionRefiner, CorrectsAFeatureEstimateOnTheGeometry) {
   EXPECT_GT(g.correspondences, EgoRefinementParams().min_correspondences);
 }
 
+TEST(EgoMotionRefiner, CoarseFirstStepsReachTheMotionOfTheFullSteps) {
+  // The first coarse_iterations steps use every 4th sampled point: from a poor estimate they must
+  // end where eight full steps end (within a millimetre), and both at the true motion.
+  Scene scene;
+  scene.posts = {{3, 2, 0.4, 2.0}, {-4, 1, 0.3, 2.5}, {1, -5, 0.5, 1.5}};
+  const Eigen::Isometry3d truth = pose(0.3, 0.1, 0.0, -1.5);
+  const Eigen::Isometry3d init = truth * pose(-0.1, 0.06, 0.02, 0.8, 0.2);
+  EgoRefinementParams full, coarse;
+  full.coarse_iterations = 0;
+  coarse.coarse_iterations = 4;
+  const EgoRefinement a = refineBetween(scene, truth, init, full);
+  const EgoRefinement b = refineBetween(scene, truth, init, coarse);
+  ASSERT_TRUE(a.ok);
+  ASSERT_TRUE(b.ok);
+  const Eigen::Isometry3d d = a.motion.inverse() * b.motion;
+  EXPECT_LT(d.translation().norm(), 0.001);
+  EXPECT_LT(Eigen::AngleAxisd(d.linear()).angle() * 180 / M_PI, 0.01);
+  const Eigen::Isometry3d err = truth.inverse() * b.motion;
+  EXPECT_LT(err.translation().norm(), 0.01);
+  // Partners at the last (full) step: all of the points' partners, not a quarter of them.
+  EXPECT_EQ(b.correspondences, a.correspondences);
+}
+
 TEST(EgoMotionRefiner, KeepsTheEstimateWhereTheGeometryIsSilent) {
   // A round room without posts, the sensor at its centre: turning about the vertical axis changes
   // nothing the geometry can see, so the estimate's yaw must survive while its offset is fixed.
@@ -110,5 +133,8 @@ TEST(EgoMotionRefiner, ParametersNameTheBadKey) {
   }
   p = {};
   p.iterations = 0;
+  EXPECT_THROW(p.validate(), ParameterError);
+  p = {};
+  p.coarse_iterations = -1;
   EXPECT_THROW(p.validate(), ParameterError);
 }

@@ -25,7 +25,8 @@ namespace dynobj::core {
 struct EgoRefinementParams : public StageParams {
   bool enabled = true;
   int points = 3000;              ///< pixels of the current frame sampled (evenly)
-  int iterations = 8;             ///< Gauss-Newton steps at most
+  int iterations = 8;             ///< Gauss-Newton steps at most, of which the first ...
+  int coarse_iterations = 3;      ///< ... this many use every 4th sampled point (coarse to fine)
   double max_distance = 0.5;      ///< [m] partners farther apart are ignored (first step) ...
   double final_distance = 0.2;    ///< [m] ... shrinking linearly to this at the last step
   double huber = 0.05;            ///< [m] Huber kernel width on point-to-plane residuals
