@@ -14,6 +14,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("range_factor", range_factor);
   v.value("min_free_ratio", min_free_ratio);
   v.value("min_evidence", min_evidence);
+  v.value("require_proof", require_proof);
   v.value("lookback", lookback);
   v.value("min_solid_ratio", min_solid_ratio);
 }
@@ -159,9 +160,11 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   const long past = std::max(chain.oldest(), current - p_.lookback);
   const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
   const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift);
-  // A rigid mover exempted from Eq. (23), and a young track judged on a short window, must prove
-  // their motion; any other candidate is only refuted by the evidence.
-  d.static_surface = (d.rigid || d.early) ? !e.provesMotion(p_) : !e.supportsMotion(p_);
+  // Every candidate must prove its motion (require_proof); without it, a rigid mover exempted
+  // from Eq. (23) and a young track judged on a short window must, and any other candidate is
+  // only refuted by the evidence.
+  const bool must_prove = p_.require_proof || d.rigid || d.early;
+  d.static_surface = must_prove ? !e.provesMotion(p_) : !e.supportsMotion(p_);
   // Seen through: only asked of a candidate the evidence above left standing.
   d.porous = !d.static_surface && p_.min_solid_ratio > 0 &&
              solidRatio(frame, cluster, p_) < p_.min_solid_ratio;

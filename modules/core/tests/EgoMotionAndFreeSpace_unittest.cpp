@@ -123,6 +123,40 @@ TEST(FreeSpaceCheck, ObjectMovingAwayProvesMotionByTheSpaceItLeft) {
   EXPECT_FALSE(stayed.provesMotion(check.params()));
 }
 
+TEST(FreeSpaceCheck, ACandidateWithoutEvidenceIsNotAMoverUnlessProofIsWaived) {
+  // The post moved 1 m straight away. A check that kept no earlier frame has no evidence at all:
+  // it decides nothing, and the default then does not let the candidate be a mover.
+  Scene before, after;
+  before.posts = {{4, 0, 0.3, 1.8}};
+  after.posts = {{5, 0, 0.3, 1.8}};
+  const TwoFrames t(before, after);
+  const Cluster c = t.clusterAt(5, 0);
+  auto reviewed = [&](const FreeSpaceParams& p) {
+    FreeSpaceCheck check(p);  // nothing remembered
+    MovementDecision d;
+    d.enough_history = d.candidate = true;  // velocity 0: no space-left-behind test
+    check.review(t.f1, 1, c, t.chain, 0.1, d);
+    return d;
+  };
+  const MovementDecision strict = reviewed(FreeSpaceParams{});  // require_proof = true
+  EXPECT_TRUE(strict.static_surface);
+  EXPECT_FALSE(strict.moving());
+  FreeSpaceParams lenient;
+  lenient.require_proof = false;
+  const MovementDecision kept = reviewed(lenient);
+  EXPECT_FALSE(kept.static_surface);
+  EXPECT_TRUE(kept.moving());
+  // With the old frame kept and the track's velocity, the space it left is seen through: proven.
+  FreeSpaceCheck check{FreeSpaceParams{}};
+  check.remember(0, t.f0);
+  MovementDecision d;
+  d.enough_history = d.candidate = true;
+  d.velocity = Eigen::Vector3d(10, 0, 0);  // 1 m over dt = 0.1 s
+  check.review(t.f1, 1, c, t.chain, 0.1, d);
+  EXPECT_FALSE(d.static_surface);
+  EXPECT_TRUE(d.moving());
+}
+
 namespace {
 
 /// A 4 x 8 frame whose range at (r, c) is depth(r, c) (0 = no return); the points' coordinates
@@ -191,10 +225,13 @@ TEST(FreeSpaceCheck, ASeenThroughCandidateIsNotAMover) {
   MovementDecision d;
   d.enough_history = d.candidate = true;
   ASSERT_TRUE(d.moving());
-  FreeSpaceCheck(FreeSpaceParams{}).review(leaves, 0, l, chain, 0.1, d);
+  FreeSpaceParams p;
+  p.require_proof = false;  // no past frame here: only the seen-through test can decide
+  FreeSpaceCheck(p).review(leaves, 0, l, chain, 0.1, d);
+  EXPECT_FALSE(d.static_surface);
   EXPECT_TRUE(d.porous);
   EXPECT_FALSE(d.moving());
-  FreeSpaceParams off;
+  FreeSpaceParams off = p;
   off.min_solid_ratio = 0;  // the paper: no such test
   MovementDecision kept;
   kept.enough_history = kept.candidate = true;

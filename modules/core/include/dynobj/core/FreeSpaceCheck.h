@@ -26,7 +26,11 @@ struct FreeSpaceParams : public StageParams {
   double margin = 0.3;  ///< [m] ranges closer than margin + range_factor x range agree
   double range_factor = 0.02;
   double min_free_ratio = 0.5;  ///< free / (free + occupied) needed to stay a moving candidate
-  int min_evidence = 3;         ///< fewer decisive points: no verdict (the candidate is kept)
+  int min_evidence = 3;         ///< fewer decisive points: no verdict ...
+  /// ... and then the candidate is not a mover: every candidate must show that the space it
+  /// occupies was free (false: only rigid movers and young tracks must; any other candidate is
+  /// kept unless the evidence refutes it). Beyond the paper (docs/algorithm.md 7b).
+  bool require_proof = true;
   int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept)
   /// A candidate fewer of whose pixels than this lie on a solid surface (at least half of their
   /// returning 8-neighbours within margin + range_factor x range) is seen through: foliage, not
