@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shared by the apps' mains: command-line parsing and uniform error reporting / exit codes:
 //   0 = success (or --help / --version), 1 = a runtime error (bad input, unwritable output, ...),
-//   2 = a bad command line, 3 = crashed (a fatal signal caught by the crash guard, which removed the
-//   unfinished outputs: io/CrashGuard.h).
+//   2 = a bad command line, 3 = crashed (a fatal signal caught by the crash guard, which removed
+//   the unfinished outputs: io/CrashGuard.h).
 #pragma once
 
 #include <dynobj/io/CrashGuard.h>

@@ -20,11 +20,12 @@ int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-label: label moving objects in a rawlog, in the browser", ' ', "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog (never written)", true, "",
                                   "file.rawlog", cmd);
-  const apps::OutputArg out(cmd, "Output base name: writes <base>.labels, .instances, "
-                                 ".session.json (resumed when they exist)",
+  const apps::OutputArg out(cmd,
+                            "Output base name: writes <base>.labels, .instances, "
+                            ".session.json (resumed when they exist)",
                             true, "base", "");
-  TCLAP::ValueArg<int> port("p", "port", "Port on 127.0.0.1 (0 = any free one)", false, 8080,
-                            "N", cmd);
+  TCLAP::ValueArg<int> port("p", "port", "Port on 127.0.0.1 (0 = any free one)", false, 8080, "N",
+                            cmd);
   TCLAP::ValueArg<std::string> pre("", "prelabels",
                                    "Detector output (label file v1, dynobj-detect -o) to load as "
                                    "pre-labels, marked until confirmed",
@@ -39,7 +40,7 @@ int run(int argc, char** argv) {
                          cmd);
   apps::SensorArgs sensor(cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
-  sigset_t stop_signals;  // Ctrl+C / kill: stop serving, then the final save (every thread
+  sigset_t stop_signals;       // Ctrl+C / kill: stop serving, then the final save (every thread
   sigemptyset(&stop_signals);  // started from here on inherits the mask)
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
@@ -77,8 +78,8 @@ int run(int argc, char** argv) {
               << " objects\n";
   }
   if (pre.isSet())
-    std::cerr << "[dynobj-label] " << session.loadPrelabels(pre.getValue())
-              << " pre-labels from " << pre.getValue() << "\n";
+    std::cerr << "[dynobj-label] " << session.loadPrelabels(pre.getValue()) << " pre-labels from "
+              << pre.getValue() << "\n";
 
   label::ServerOptions so;
   so.port = port.getValue();
@@ -88,8 +89,7 @@ int run(int argc, char** argv) {
   so.autosave_s = autosave.getValue();
   label::LabelServer server(session, so);
   const int bound = server.bind();
-  std::cout << "dynobj-label: open http://127.0.0.1:" << bound << "/ (Ctrl+C to stop)"
-            << std::endl;
+  std::cout << "dynobj-label: open http://127.0.0.1:" << bound << "/ (Ctrl+C to stop)" << std::endl;
   std::thread waiter([&] {
     int sig = 0;
     sigwait(&stop_signals, &sig);

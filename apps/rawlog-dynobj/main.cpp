@@ -55,8 +55,8 @@ int run(int argc, char** argv) {
     std::cerr << "rawlog-dynobj: error: --skip-existing and -w/--overwrite exclude each other\n";
     return 2;
   }
-  if (skip.isSet() && dynobj::apps::allExist({out.getValue(), labels_out.getValue(),
-                                              tracks_out.getValue()})) {
+  if (skip.isSet() &&
+      dynobj::apps::allExist({out.getValue(), labels_out.getValue(), tracks_out.getValue()})) {
     std::printf("rawlog-dynobj: '%s' exists: skipped\n", out.getValue().c_str());
     return 0;
   }

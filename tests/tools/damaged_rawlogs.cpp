@@ -214,7 +214,8 @@ int main(int argc, char** argv) {
     writeFile(in, mutate(kind % 2 ? raw : gz, kind, c));
     std::vector<std::string> args;
     for (auto a : tool) {
-      for (const auto& [key, val] : {std::pair<std::string, std::string>{"{in}", in}, {"{out}", out}})
+      for (const auto& [key, val] :
+           {std::pair<std::string, std::string>{"{in}", in}, {"{out}", out}})
         if (const auto p = a.find(key); p != std::string::npos) a.replace(p, key.size(), val);
       args.push_back(a);
     }
@@ -229,8 +230,10 @@ int main(int argc, char** argv) {
       std::string why;
       const long n = fs::exists(out) ? readsToEnd(out, why) : -1;
       verdict = "ok";
-      if (!fs::exists(out)) problem = "exit 0 without an output";
-      else if (n <= 0) problem = "exit 0 but the output is not readable to its end: " + why;
+      if (!fs::exists(out))
+        problem = "exit 0 without an output";
+      else if (n <= 0)
+        problem = "exit 0 but the output is not readable to its end: " + why;
     } else if (WEXITSTATUS(r.status) == 1) {
       verdict = "error";
       if (!std::regex_search(r.err, names_where))
@@ -256,7 +259,7 @@ int main(int argc, char** argv) {
     fs::remove(out + ".partial");
   }
   for (const auto& [k, n] : tally) std::cout << k << ": " << n << "\n";
-  std::cout << (failures ? "FAILED: " : "passed: ") << failures << " failing case(s) of "
-            << ran << " run\n";
+  std::cout << (failures ? "FAILED: " : "passed: ") << failures << " failing case(s) of " << ran
+            << " run\n";
   return failures ? 1 : 0;
 }

@@ -54,7 +54,8 @@ CObservationVelodyneScan::Ptr toVelodyne(const CObservation3DRangeScan& s,
     pc.intensity.push_back(static_cast<std::uint8_t>(std::clamp(std::lround(in), 0L, 255L)));
     pc.timestamp.push_back(s.timestamp);
     pc.azimuth.push_back(static_cast<float>(std::atan2(s.points3D_y[i], s.points3D_x[i])));
-    pc.laser_id.push_back(static_cast<std::int16_t>(row_to_laser.at(static_cast<std::size_t>(row))));
+    pc.laser_id.push_back(
+        static_cast<std::int16_t>(row_to_laser.at(static_cast<std::size_t>(row))));
   }
   return v;
 }

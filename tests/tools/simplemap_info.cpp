@@ -71,13 +71,15 @@ int main(int argc, char** argv) {
           }
       }
     }
-    std::printf("simplemap: %zu keyframes, %zu range scans, %zu points kept, %zu dropped, %zu "
-                "pixels marked dynamic\n",
-                sm.size(), scans, kept, dropped, marked);
+    std::printf(
+        "simplemap: %zu keyframes, %zu range scans, %zu points kept, %zu dropped, %zu "
+        "pixels marked dynamic\n",
+        sm.size(), scans, kept, dropped, marked);
     if (gt)
-      std::printf("ground truth (%zu scans matched): kept on moving actors %zu, dropped on moving "
-                  "actors %zu of %zu, marked on moving actors %zu of %zu\n",
-                  scans_with_gt, kept_on_gt, dropped_on_gt, dropped, marked_on_gt, marked);
+      std::printf(
+          "ground truth (%zu scans matched): kept on moving actors %zu, dropped on moving "
+          "actors %zu of %zu, marked on moving actors %zu of %zu\n",
+          scans_with_gt, kept_on_gt, dropped_on_gt, dropped, marked_on_gt, marked);
     return 0;
   } catch (const std::exception& e) {
     std::printf("simplemap_info: error: %s\n", e.what());

@@ -64,9 +64,10 @@ int main(int argc, char** argv) {
         const auto t1 = std::chrono::steady_clock::now();
         const auto& sm = filter.summary();
         const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count() / every;
-        const double dyn = sm.points > points0 ? 100.0 * static_cast<double>(sm.dynamic_points - dyn0) /
-                                                     static_cast<double>(sm.points - points0)
-                                               : 0.0;
+        const double dyn = sm.points > points0
+                               ? 100.0 * static_cast<double>(sm.dynamic_points - dyn0) /
+                                     static_cast<double>(sm.points - points0)
+                               : 0.0;
         std::printf("%d,%.0f,%.1f,%.1f,%.2f\n", i + 1, (i + 1) * sim.scenario().period(),
                     residentMiB(), ms, dyn);
         std::fflush(stdout);

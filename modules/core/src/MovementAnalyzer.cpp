@@ -25,7 +25,7 @@ void MovementParams::visit(ParamVisitor& v) {
 
 void MovementParams::validate() const {
   requireInRange("window", window, 2, 1000);
-  requireInRange("min_window", min_window, 2, 1000);  // >= window: off
+  requireInRange("min_window", min_window, 2, 1000);    // >= window: off
   requireInRange("stop_window", stop_window, 2, 1000);  // > window: off
   requireInRange("stop_speed", stop_speed, 0, 100);
   requirePositive("min_displacement", min_displacement);

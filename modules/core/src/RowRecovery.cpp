@@ -182,9 +182,8 @@ std::vector<double> histogramTable(const PointCloud& c, int rows) {
   std::vector<double> table;
   for (const auto& [v, b] : peaks) {
     const double e = (b + 0.5) * kBin - M_PI / 2;
-    const bool apart = std::all_of(table.begin(), table.end(), [&](double t) {
-      return std::abs(t - e) >= kMinSeparation;
-    });
+    const bool apart = std::all_of(table.begin(), table.end(),
+                                   [&](double t) { return std::abs(t - e) >= kMinSeparation; });
     if (apart) table.push_back(e);
     if (static_cast<int>(table.size()) == rows) break;
   }
@@ -218,10 +217,14 @@ void assignColumns(PointCloud& c, const SensorModel& m) {
 
 const char* toString(RowSource s) {
   switch (s) {
-    case RowSource::RingField: return "ring field";
-    case RowSource::FiringOrder: return "firing order";
-    case RowSource::EstimatedTable: return "estimated beam table";
-    case RowSource::NominalTable: return "nominal beam table";
+    case RowSource::RingField:
+      return "ring field";
+    case RowSource::FiringOrder:
+      return "firing order";
+    case RowSource::EstimatedTable:
+      return "estimated beam table";
+    case RowSource::NominalTable:
+      return "nominal beam table";
   }
   return "?";
 }
@@ -288,7 +291,8 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   }
   if (lasers > 0 && (!hint || hint->rows == lasers)) {
     std::vector<double> table;
-    const std::vector<int> to_row = rowsByElevation(measuredElevations(cloud, laser, lasers), table);
+    const std::vector<int> to_row =
+        rowsByElevation(measuredElevations(cloud, laser, lasers), table);
     out.sensor = withTable(hint, std::move(table), "recovered rows");
     if (!hint) out.sensor.cols = estimateColumns(cloud, laser, lasers);
     cloud.row.resize(cloud.size());

@@ -169,8 +169,8 @@ TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
                    -2.01f + 0.003f * (i % 5), 0.01f});
   for (int i = 0; i < 11; i++)
     for (int j = 0; j < 6; j++)
-      pts.push_back({static_cast<float>(4 + j), static_cast<float>(i), 6.f + 0.2f * i, 2.f,
-                     0.2f * j - 0.5f});
+      pts.push_back(
+          {static_cast<float>(4 + j), static_cast<float>(i), 6.f + 0.2f * i, 2.f, 0.2f * j - 0.5f});
   const LidarFrame f = pointsFrame(pts);
   for (const char* search : {"grid", "kdtree"}) {
     ClusteringParams p;

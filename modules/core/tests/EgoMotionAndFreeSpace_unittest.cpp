@@ -189,7 +189,8 @@ TEST(FreeSpaceCheck, SolidRatioTellsASurfaceFromFoliage) {
   ASSERT_EQ(b.pixels.size(), 12u);
   EXPECT_DOUBLE_EQ(solidRatio(block, b, p), 1.0);
   // Its bottom row hidden by the wall: the two lower corners keep 3 of 8 (outline, not surface).
-  const LidarFrame cut = depthFrame([](int r, int c) { return c >= 2 && c <= 4 && r < 3 ? 5 : 20; });
+  const LidarFrame cut =
+      depthFrame([](int r, int c) { return c >= 2 && c <= 4 && r < 3 ? 5 : 20; });
   EXPECT_DOUBLE_EQ(solidRatio(cut, pixelsWhere(cut, 4, 6), p), 7.0 / 9.0);
   // Foliage: neighbouring returns 0.8 m or more apart in depth, but along one diagonal (2 of 8).
   const LidarFrame leaves = depthFrame([](int r, int c) { return 5 + 0.8F * ((3 * r + c) % 4); });
@@ -198,7 +199,7 @@ TEST(FreeSpaceCheck, SolidRatioTellsASurfaceFromFoliage) {
   EXPECT_DOUBLE_EQ(solidRatio(leaves, l, p), 0.0);
   // A solid strip (8 pixels) and 4 isolated returns with no returning neighbour: 8 / 12.
   const LidarFrame half = depthFrame([](int r, int c) {
-    if (c <= 1) return 5.0F;                           // a solid strip, columns 0-1
+    if (c <= 1) return 5.0F;                                // a solid strip, columns 0-1
     return (c == 4 || c == 6) && r % 2 == 0 ? 5.0F : 0.0F;  // isolated returns
   });
   const Cluster h = pixelsWhere(half, 4, 6);

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/EgoMotionCheck.h"
-#include "dynobj/eval/EgoMotionError.h"
 
 #include <dynobj/mrptio/PoseConversion.h>
 #include <mrpt/maps/CSimplePointsMap.h>
@@ -13,6 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <unordered_set>
+
+#include "dynobj/eval/EgoMotionError.h"
 
 namespace dynobj::eval {
 namespace {

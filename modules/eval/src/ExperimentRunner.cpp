@@ -126,7 +126,8 @@ SequenceFiles SequenceFiles::prepare(const std::string& input, const std::string
   const std::string dir = out_dir + "/" + sc.name;
   // The stamp beside the rawlog says what it was simulated from: the scenario's text, the
   // overrides (frames), the seed and count as read, and the simulator's fingerprint (a hash of its
-  // first sweep). A sequence is reused only when its stamp matches; otherwise it is simulated again.
+  // first sweep). A sequence is reused only when its stamp matches; otherwise it is simulated
+  // again.
   const std::string stamp_path = dir + "/" + sc.name + ".sim-stamp";
   std::ostringstream what;
   {

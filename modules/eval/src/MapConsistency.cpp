@@ -7,16 +7,23 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
-
 namespace dynobj::eval {
 
 namespace {
-double ratio(long a, long b) { return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0; }
+double ratio(long a, long b) {
+  return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0;
+}
 }  // namespace
 
-double ConsistencyReport::flaggedShare() const { return ratio(flagged, points); }
-double ConsistencyReport::suspiciousShare() const { return ratio(flagged_static, flagged); }
-double ConsistencyReport::transientShare() const { return ratio(flagged_transient, flagged); }
+double ConsistencyReport::flaggedShare() const {
+  return ratio(flagged, points);
+}
+double ConsistencyReport::suspiciousShare() const {
+  return ratio(flagged_static, flagged);
+}
+double ConsistencyReport::transientShare() const {
+  return ratio(flagged_transient, flagged);
+}
 
 std::string ConsistencyReport::toString() const {
   char b[400];
@@ -141,7 +148,8 @@ cv::Mat MapConsistency::topView(double resolution) const {
     return cv::Point(static_cast<int>((hi.y() - y) / resolution),
                      static_cast<int>((hi.x() - x) / resolution));
   };
-  const cv::Scalar colours[5] = {{90, 90, 90}, {0, 200, 0}, {0, 0, 255}, {0, 255, 255}, {255, 0, 255}};
+  const cv::Scalar colours[5] = {
+      {90, 90, 90}, {0, 200, 0}, {0, 0, 255}, {0, 255, 255}, {255, 0, 255}};
   for (int pass = 0; pass < 2; pass++)  // the static map first, flagged points on top
     for (const auto& [w, c] : marks_) {
       if ((c >= 2) != (pass == 1)) continue;

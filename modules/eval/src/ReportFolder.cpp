@@ -42,8 +42,8 @@ std::string writeReportFolder(const std::string& dir, const std::string& title,
 RunResult scoreLabelFiles(const std::string& gt, const std::string& pred,
                           const std::string& unreviewed) {
   if (unreviewed != "refuse" && unreviewed != "skip" && unreviewed != "include")
-    throw std::invalid_argument("--unreviewed must be refuse, skip or include (got '" +
-                                unreviewed + "')");
+    throw std::invalid_argument("--unreviewed must be refuse, skip or include (got '" + unreviewed +
+                                "')");
   RunResult r;
   r.mode = "files";
   r.description = std::filesystem::path(pred).filename().string();

@@ -28,9 +28,11 @@ core::LidarFrame sweep(int k, cv::Mat_<std::uint8_t>& box_mask) {
   const double box_y = -3 + 0.2 * k;
   for (int r = 0; r < s.rows; r++)
     for (int c = 0; c < s.cols; c++) {
-      const double el = s.elevation_top - (r + 0.5) * (s.elevation_top - s.elevation_bottom) / s.rows;
+      const double el =
+          s.elevation_top - (r + 0.5) * (s.elevation_top - s.elevation_bottom) / s.rows;
       const double az = M_PI - (c + 0.5) * 2 * M_PI / s.cols;
-      const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                              std::sin(el));
       if (d.x() <= 0.1) continue;
       Eigen::Vector3d p = d * (6.0 / d.x());  // the box's front face
       if (std::abs(p.y() - box_y) > 0.3 || std::abs(p.z()) > 0.5) p = d * (10.0 / d.x());
@@ -58,8 +60,8 @@ TEST(MapConsistency, MoverIsTransientAndFlaggedWallIsSuspicious) {
     cv::Mat_<std::uint8_t> box;
     const core::LidarFrame f = sweep(k, box);
     box_points += cv::countNonZero(box);
-    truth.add(f, Eigen::Isometry3d::Identity(), box);   // the box flagged: right
-    cv::Mat_<std::uint8_t> wall = f.valid & ~box;       // the wall flagged: wrong
+    truth.add(f, Eigen::Isometry3d::Identity(), box);  // the box flagged: right
+    cv::Mat_<std::uint8_t> wall = f.valid & ~box;      // the wall flagged: wrong
     wall_flagged.add(f, Eigen::Isometry3d::Identity(), wall);
   }
   ASSERT_GT(box_points, 100);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/io/AtomicFile.h"
 
-#include "dynobj/io/CrashGuard.h"
-
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+
+#include "dynobj/io/CrashGuard.h"
 
 namespace dynobj::io {
 namespace {

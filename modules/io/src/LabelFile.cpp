@@ -9,7 +9,8 @@
 namespace dynobj::io {
 namespace {
 
-constexpr int kMaxSide = 65535;  ///< rows and cols of a label image (a 128 x 4096 LiDAR is far below)
+constexpr int kMaxSide =
+    65535;  ///< rows and cols of a label image (a 128 x 4096 LiDAR is far below)
 
 [[noreturn]] void bad(const std::string& path, std::size_t line, const std::string& what) {
   throw LabelFileError(path + ":" + std::to_string(line) + ": " + what);
@@ -35,8 +36,8 @@ LabelFile LabelFile::read(const std::string& path) {
     if (got != 2 || f.rows <= 0 || f.cols <= 0 || f.rows > kMaxSide || f.cols > kMaxSide)
       bad(path, 1,
           "bad header '" + text + "' (expected '# dynobj-labels v1 rows=<H> cols=<W>'" +
-              " or '# dynobj-instances v1 rows=<H> cols=<W>', each at most " + std::to_string(kMaxSide) +
-              ")");
+              " or '# dynobj-instances v1 rows=<H> cols=<W>', each at most " +
+              std::to_string(kMaxSide) + ")");
   }
   std::string review_line;
   std::size_t review_line_no = 0;
@@ -157,7 +158,8 @@ std::vector<std::uint8_t> parseSweepRanges(const std::string& text, std::size_t 
       if (v > n) throw std::invalid_argument("sweep " + text.substr(start) + " does not exist");
       pos++;
     }
-    if (pos == start) throw std::invalid_argument("expected a sweep number at '" + text.substr(start) + "'");
+    if (pos == start)
+      throw std::invalid_argument("expected a sweep number at '" + text.substr(start) + "'");
   };
   while (pos < text.size()) {
     std::size_t a = 0, b = 0;

@@ -5,7 +5,6 @@
 #include <dynobj/io/CrashGuard.h>
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
-
 #include <sys/wait.h>
 
 #include <csignal>
@@ -44,8 +43,8 @@ constexpr bool kAsan = false;
 /// Exit code 3; in an AddressSanitizer build ASan's own SIGSEGV handler, which the guard calls
 /// after its clean-up, reports and exits with 1 first.
 bool crashExit(int status) {
-  return WIFEXITED(status) && (WEXITSTATUS(status) == kCrashExitCode ||
-                               (kAsan && WEXITSTATUS(status) == 1));
+  return WIFEXITED(status) &&
+         (WEXITSTATUS(status) == kCrashExitCode || (kAsan && WEXITSTATUS(status) == 1));
 }
 
 }  // namespace

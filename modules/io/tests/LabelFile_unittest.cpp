@@ -166,6 +166,7 @@ TEST(LabelFile, SweepRangesParseStrictly) {
     LabelFile::read(p);
     FAIL();
   } catch (const LabelFileError& e) {
-    EXPECT_NE(std::string(e.what()).find(":2: bad '# reviewed' line"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(":2: bad '# reviewed' line"), std::string::npos)
+        << e.what();
   }
 }

@@ -5,12 +5,12 @@
 #include <dynobj/io/PcdFile.h>
 #include <gtest/gtest.h>
 
-#include "PcdTestFiles.h"
-
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
+
+#include "PcdTestFiles.h"
 
 namespace io = dynobj::io;
 using pcd_test::expectError;
@@ -19,7 +19,6 @@ using pcd_test::tmp;
 using pcd_test::write;
 
 namespace {
-
 
 const std::string kXyz = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();

@@ -5,12 +5,11 @@
 #include <dynobj/io/PcdFile.h>
 #include <gtest/gtest.h>
 
-#include "PcdTestFiles.h"
-
 #include <algorithm>
 #include <fstream>
 
 #include "../src/Lzf.h"
+#include "PcdTestFiles.h"
 
 namespace io = dynobj::io;
 using pcd_test::expectError;
@@ -60,7 +59,6 @@ std::string unlzf(const std::string& in, std::size_t n, std::string* problem = n
   if (problem) *problem = p;
   return p.empty() ? out : "";
 }
-
 
 }  // namespace
 

@@ -225,10 +225,9 @@ struct LabelServer::Impl {
                           "application/json");
           return;
         }
-        res.set_content(json{{"files", LabelSession::outputFiles(opts.output)},
-                             {"saved_at", saved_at}}
-                            .dump(),
-                        "application/json");
+        res.set_content(
+            json{{"files", LabelSession::outputFiles(opts.output)}, {"saved_at", saved_at}}.dump(),
+            "application/json");
       });
     });
     // httplib's default also sets SO_REUSEPORT, which lets a second server share a port in use

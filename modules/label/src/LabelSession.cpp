@@ -139,7 +139,8 @@ cv::Mat_<std::uint8_t> LabelSession::others(std::size_t k, int except_id) const 
   cv::Mat_<std::uint8_t> b(rows_, cols_, std::uint8_t{0});
   for (const auto& o : labels_[k].objects) {
     if (o.id == except_id) continue;
-    for (std::uint32_t px : o.pixels) b(static_cast<int>(px) / cols_, static_cast<int>(px) % cols_) = 255;
+    for (std::uint32_t px : o.pixels)
+      b(static_cast<int>(px) / cols_, static_cast<int>(px) % cols_) = 255;
   }
   return b;
 }
@@ -257,7 +258,8 @@ Eigen::Isometry3d LabelSession::motion(std::size_t from, std::size_t to, std::st
   const auto exclude = [&](std::size_t k) {
     cv::Mat_<std::uint8_t> m(rows_, cols_, std::uint8_t{0});
     for (const auto& o : labels_[k].objects)
-      for (std::uint32_t px : o.pixels) m(static_cast<int>(px) / cols_, static_cast<int>(px) % cols_) = 255;
+      for (std::uint32_t px : o.pixels)
+        m(static_cast<int>(px) / cols_, static_cast<int>(px) % cols_) = 255;
     return m;
   };
   cv::Mat_<float> ia, ib;
@@ -276,10 +278,13 @@ Eigen::Isometry3d LabelSession::motion(std::size_t from, std::size_t to, std::st
 Propagation LabelSession::propagate(std::size_t k, int id) {
   if (k + 1 >= size()) throw LabelError("sweep " + std::to_string(k) + " is the last one");
   const ObjectLabel* obj = object(k, id);
-  if (!obj) throw LabelError("object " + std::to_string(id) + " has no label in sweep " + std::to_string(k));
+  if (!obj)
+    throw LabelError("object " + std::to_string(id) + " has no label in sweep " +
+                     std::to_string(k));
   Propagation out;
   out.to = k + 1;
-  if (const ObjectLabel* there = object(k + 1, id); there && there->state == LabelState::confirmed) {
+  if (const ObjectLabel* there = object(k + 1, id);
+      there && there->state == LabelState::confirmed) {
     out.found = out.kept = true;
     out.pixels = there->pixels.size();
     return out;

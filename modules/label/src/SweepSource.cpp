@@ -25,12 +25,12 @@ void MemorySweeps::load(std::size_t k, core::LidarFrame& frame,
   pose = poses_.at(k);
 }
 
-RawlogSweeps::RawlogSweeps(const std::string& rawlog,
-                           const mrptio::ObservationConverter& converter,
+RawlogSweeps::RawlogSweeps(const std::string& rawlog, const mrptio::ObservationConverter& converter,
                            const std::string& sensor_label,
                            std::function<void(std::size_t, std::uint64_t)> progress)
     : index_(std::make_unique<mrptio::RawlogIndex>(
-          rawlog, converter, mrptio::RawlogIndex::Options{sensor_label, std::move(progress), 32ull << 20})) {}
+          rawlog, converter,
+          mrptio::RawlogIndex::Options{sensor_label, std::move(progress), 32ull << 20})) {}
 
 RawlogSweeps::~RawlogSweeps() = default;
 

@@ -358,8 +358,10 @@ TEST(RawlogSweeps, ReadsTheSampleInAnyOrderLikeTheSequentialReader) {
   ASSERT_EQ(std::system(("gzip -dc '" + sample + ".rawlog' > '" + plain + "'").c_str()), 0);
   for (const std::string& file : {sample + ".rawlog", plain}) {
     mrptio::RawlogIndex index(file, mrptio::ObservationConverter(), {"", {}, 1u << 20});
-    if (file == plain) EXPECT_EQ(index.checkpoints(), 0u);
-    else EXPECT_TRUE(index.checkpoints() > 10 && index.checkpoints() <= 22) << index.checkpoints();
+    if (file == plain)
+      EXPECT_EQ(index.checkpoints(), 0u);
+    else
+      EXPECT_TRUE(index.checkpoints() > 10 && index.checkpoints() <= 22) << index.checkpoints();
     for (std::size_t k : {39u, 0u, 38u, 1u, 25u, 24u, 26u}) {
       mrptio::Frame got;
       index.read(k, got);

@@ -76,9 +76,9 @@ void DynamicObjectFilter::preconvert(const mobs::CObservation& obs, Preconverted
   }
 }
 
-const core::DetectionResult* DynamicObjectFilter::filter(const mobs::CObservation::Ptr& obs,
-                                                         std::vector<mobs::CObservation::Ptr>* extra,
-                                                         PreconvertedFrame* pre) {
+const core::DetectionResult* DynamicObjectFilter::filter(
+    const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra,
+    PreconvertedFrame* pre) {
   summary_.observations++;
   if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
   const detail::ObservationClass* cls = detail::findObservationClass(*obs);

@@ -184,8 +184,12 @@ uint64_t GzipInputStream::Seek(int64_t, CStream::TSeekOrigin) {
   throw std::logic_error("GzipInputStream cannot seek");
 }
 
-uint64_t GzipInputStream::getTotalBytesCount() const { return file_size_; }
+uint64_t GzipInputStream::getTotalBytesCount() const {
+  return file_size_;
+}
 
-uint64_t GzipInputStream::getPosition() const { return position_; }
+uint64_t GzipInputStream::getPosition() const {
+  return position_;
+}
 
 }  // namespace dynobj::mrptio

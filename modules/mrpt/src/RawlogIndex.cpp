@@ -115,8 +115,7 @@ class RawlogIndex::Stream : public mrpt::io::CStream {
     std::vector<char> skip(1 << 16);
     while (pos_ < target) {
       const size_t got = Read(skip.data(), std::min<std::uint64_t>(skip.size(), target - pos_));
-      if (got == 0)
-        throw RawlogError("rawlog '" + path_ + "' is shorter than when it was indexed");
+      if (got == 0) throw RawlogError("rawlog '" + path_ + "' is shorter than when it was indexed");
     }
     return pos_;
   }
@@ -256,9 +255,9 @@ RawlogIndex::RawlogIndex(std::string rawlog, ObservationConverter converter, Opt
     if (opts.progress && entries_ % 200 == 0) opts.progress(entries_, in_->rawPosition());
   }
   if (sweeps_.empty())
-    throw RawlogError("rawlog '" + path_ + "' has no LiDAR observation" +
-                      (opts.sensor_label.empty() ? std::string()
-                                                 : " with label '" + opts.sensor_label + "'"));
+    throw RawlogError(
+        "rawlog '" + path_ + "' has no LiDAR observation" +
+        (opts.sensor_label.empty() ? std::string() : " with label '" + opts.sensor_label + "'"));
 }
 
 RawlogIndex::~RawlogIndex() = default;

@@ -106,7 +106,10 @@ FilterSummary difference(const FilterSummary& after, const FilterSummary& before
 class Pipeline {
  public:
   Pipeline(RawlogReader& reader, const RawlogFilterOptions& o, unsigned threads, bool keep)
-      : reader_(reader), o_(o), max_lanes_(threads), keep_results_(keep),
+      : reader_(reader),
+        o_(o),
+        max_lanes_(threads),
+        keep_results_(keep),
         jobs_(4 + 2 * static_cast<std::size_t>(threads)) {}
 
   ~Pipeline() { stop(); }

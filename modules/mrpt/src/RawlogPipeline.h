@@ -12,7 +12,8 @@ namespace dynobj::mrptio::detail {
 
 /// Called for every filtered observation in entry order with its detection (nullptr when it was
 /// not processed).
-using ResultSink = std::function<void(const mrpt::obs::CObservation&, const core::DetectionResult*)>;
+using ResultSink =
+    std::function<void(const mrpt::obs::CObservation&, const core::DetectionResult*)>;
 
 /// Reads `reader` to its end in a thread of its own, detects in one lane per sensor label (at most
 /// `threads` lanes; each label's frames in order, different labels in parallel), and writes every

@@ -117,8 +117,7 @@ struct RawlogWriter::Impl {
       std::shared_ptr<Block> b;
       {
         std::unique_lock<std::mutex> lk(m);
-        if (inflight.size() > wait_for)
-          done_cv.wait(lk, [&] { return inflight.front()->done; });
+        if (inflight.size() > wait_for) done_cv.wait(lk, [&] { return inflight.front()->done; });
         if (inflight.empty() || !inflight.front()->done) return;
         b = inflight.front();
         inflight.pop_front();
@@ -173,7 +172,9 @@ RawlogWriter::RawlogWriter(const std::string& path, int compress_level, unsigned
 
 RawlogWriter::~RawlogWriter() = default;
 
-unsigned RawlogWriter::hardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }  // an uncommitted file is removed by io::AtomicFile
+unsigned RawlogWriter::hardwareThreads() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}  // an uncommitted file is removed by io::AtomicFile
 
 void RawlogWriter::write(const mrpt::serialization::CSerializable& obj) {
   StringSink sink(impl_->current);
@@ -189,8 +190,12 @@ void RawlogWriter::commit() {
   impl_->file.commit();
 }
 
-const std::string& RawlogWriter::path() const { return impl_->file.path(); }
+const std::string& RawlogWriter::path() const {
+  return impl_->file.path();
+}
 
-std::uint64_t RawlogWriter::bytesWritten() const { return impl_->written; }
+std::uint64_t RawlogWriter::bytesWritten() const {
+  return impl_->written;
+}
 
 }  // namespace dynobj::mrptio

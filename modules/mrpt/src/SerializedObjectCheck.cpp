@@ -100,8 +100,8 @@ class Cursor {
   std::string string(const char* what) {
     const std::uint32_t n = u32();
     if (n > limits_.max_string)
-      damaged(std::string(what) + " declares a string of " + std::to_string(n) +
-              " bytes (limit " + std::to_string(limits_.max_string) + ")");
+      damaged(std::string(what) + " declares a string of " + std::to_string(n) + " bytes (limit " +
+              std::to_string(limits_.max_string) + ")");
     const std::uint8_t* p = take(n);
     return std::string(reinterpret_cast<const char*>(p), n);
   }
@@ -110,8 +110,8 @@ class Cursor {
     const std::uint64_t n = rows * cols;  // both < 2^32: no overflow
     if (rows > limits_.max_elements || cols > limits_.max_elements || n > limits_.max_elements)
       damaged(std::string(what) + " declares " + std::to_string(rows) + " x " +
-              std::to_string(cols) + " elements (limit " +
-              std::to_string(limits_.max_elements) + ")");
+              std::to_string(cols) + " elements (limit " + std::to_string(limits_.max_elements) +
+              ")");
     skip(n * bytes);
   }
 
@@ -119,8 +119,8 @@ class Cursor {
     throw ObjectDamaged(msg + " in " + where());
   }
   std::string where() const {
-    return (cls_.empty() ? std::string("an object") : cls_) + " (byte " +
-           std::to_string(off_) + " of the object)";
+    return (cls_.empty() ? std::string("an object") : cls_) + " (byte " + std::to_string(off_) +
+           " of the object)";
   }
 
   std::uint64_t offset() const { return off_; }
@@ -187,8 +187,7 @@ void walkMember(Cursor& c, const char* expected, bool strict = true) {
     c.damaged(std::string("a member object that should be a ") + expected + " is not");
   if (!walkBody(c, cls, v)) {
     if (!strict) throw StopWalk{};
-    c.damaged("version " + std::to_string(v) + " of " + expected +
-              " cannot be inside this object");
+    c.damaged("version " + std::to_string(v) + " of " + expected + " cannot be inside this object");
   }
   endFlag(c);
   c.cls_ = outer;
@@ -202,9 +201,12 @@ bool walkMatrixF(Cursor& c, std::uint8_t v) {
 }
 
 bool walkPose3D(Cursor& c, std::uint8_t v) {
-  if (v == 2) c.skip(7 * 8);        // x y z + quaternion
-  else if (v == 3) c.skip(12 * 8);  // x y z + 3x3 rotation
-  else return false;
+  if (v == 2)
+    c.skip(7 * 8);  // x y z + quaternion
+  else if (v == 3)
+    c.skip(12 * 8);  // x y z + 3x3 rotation
+  else
+    return false;
   return true;
 }
 
@@ -298,7 +300,7 @@ bool walkPixelLabels(Cursor& c) {
 bool walkRangeScan3D(Cursor& c, std::uint8_t v) {
   if (v > 10) return false;
   const bool strict = v >= 9;  // members written by MRPT 2.x; older files: stop at what is unknown
-  c.skip(4);  // maxRange
+  c.skip(4);                   // maxRange
   walkMember(c, "CPose3D", strict);
   if (v == 0 || c.flag("hasPoints3D")) {
     const std::uint32_t n = c.u32();

@@ -3,8 +3,8 @@
 // (a range image's rows x cols, a point count, a string length): a damaged size makes it ask for
 // terabytes, and its aligned allocator returns nullptr instead of throwing, so the next memset
 // crashes the process (docs/formats.md, "MRPT quirks"). The check walks the object's bytes in a
-// look-ahead buffer for the classes our rawlogs hold, rejects sizes beyond sane limits or beyond the
-// end of the stream, and only then lets MRPT read the same bytes from the buffer.
+// look-ahead buffer for the classes our rawlogs hold, rejects sizes beyond sane limits or beyond
+// the end of the stream, and only then lets MRPT read the same bytes from the buffer.
 #pragma once
 
 #include <mrpt/io/CStream.h>

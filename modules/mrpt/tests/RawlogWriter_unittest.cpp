@@ -31,7 +31,8 @@ mrpt::obs::CObservationComment comment(int i, std::size_t size) {
   mrpt::obs::CObservationComment c;
   c.sensorLabel = "NOTE";
   c.timestamp = mrpt::Clock::fromDouble(1000.0 + i);  // (the default is 'now')
-  while (c.text.size() < size) c.text += "comment " + std::to_string(i * 7919 + c.text.size()) + ";";
+  while (c.text.size() < size)
+    c.text += "comment " + std::to_string(i * 7919 + c.text.size()) + ";";
   return c;
 }
 
@@ -158,8 +159,8 @@ TEST(RawlogWriter, RawLogViewersLoaderReadsEveryMember) {
     mrpt::obs::CRawlog log;
     ASSERT_TRUE(log.loadFromRawLogFile(path));
     ASSERT_EQ(log.size(), static_cast<std::size_t>(n));
-    auto last = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(
-        log.getAsObservation(n - 1));
+    auto last =
+        std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(log.getAsObservation(n - 1));
     ASSERT_TRUE(last);
     EXPECT_EQ(last->getScanRange(rays - 1),
               static_cast<float>(((n - 1) * rays + rays - 1) % 9973) * 0.001f);

@@ -22,7 +22,7 @@ struct RegionGrowingParams : public StageParams {
       0.02;  ///< and neighbours' ranges differ by at most distance + depth_factor x range
   double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
                             ///< centre, or than half the seeds' own extent plus this, if larger
-  int max_pixels = 20000;  ///< safety limit per object
+  int max_pixels = 20000;   ///< safety limit per object
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -15,11 +15,11 @@
 namespace dynobj::eval {
 
 struct EgoMotionAgreement {
-  int pairs = 0;         ///< consecutive frame pairs seen
-  int ego_ok = 0;        ///< pairs whose intensity ego-motion succeeded
-  int icp_ok = 0;        ///< pairs ICP registered (goodness above its threshold)
-  int compared = 0;      ///< pairs where both succeeded
-  int agree = 0;         ///< ... and differ by at most max_translation and max_rotation
+  int pairs = 0;                  ///< consecutive frame pairs seen
+  int ego_ok = 0;                 ///< pairs whose intensity ego-motion succeeded
+  int icp_ok = 0;                 ///< pairs ICP registered (goodness above its threshold)
+  int compared = 0;               ///< pairs where both succeeded
+  int agree = 0;                  ///< ... and differ by at most max_translation and max_rotation
   double max_translation = 0.10;  ///< [m] agreement bound used
   double max_rotation = 0.5;      ///< [deg] agreement bound used
   std::vector<double> translation_diff;  ///< [m] per compared pair

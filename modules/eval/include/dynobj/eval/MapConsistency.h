@@ -12,10 +12,9 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <optional>
 
 #include "dynobj/core/LidarFrame.h"
 #include "dynobj/core/SphericalProjection.h"

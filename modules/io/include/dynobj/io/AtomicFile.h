@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The project's one mechanism for output files that are either complete or absent: everything is
 // written to "<path>.partial" and renamed to <path> only by commit(); an uncommitted file (an
-// error, an exception) is removed, and so is one left by a crash or a kill (CrashGuard.h). AtomicFile for files we write through a std::ofstream;
-// PartialPath for files other libraries write by name (rawlogs, simplemaps, PNGs, folders).
+// error, an exception) is removed, and so is one left by a crash or a kill (CrashGuard.h).
+// AtomicFile for files we write through a std::ofstream; PartialPath for files other libraries
+// write by name (rawlogs, simplemaps, PNGs, folders).
 #pragma once
 
 #include <fstream>

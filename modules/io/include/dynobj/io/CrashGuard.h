@@ -7,8 +7,8 @@
 //
 // Fatal signals (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT): partial files removed, a message
 // "<app>: fatal error: <signal> at entry N (byte B) of '<input>'" (the last entry the reader
-// started), exit code 3 (after the previously installed handler, e.g. a sanitizer's, has run). SIGINT, SIGTERM, SIGHUP: partial
-// files removed, then the process dies of the signal as usual.
+// started), exit code 3 (after the previously installed handler, e.g. a sanitizer's, has run).
+// SIGINT, SIGTERM, SIGHUP: partial files removed, then the process dies of the signal as usual.
 #pragma once
 
 #include <cstdint>

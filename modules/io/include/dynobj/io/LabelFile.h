@@ -40,7 +40,9 @@ struct LabelFile {
   bool has_review = false;
   std::vector<std::uint8_t> reviewed;
 
-  bool isReviewed(std::size_t k) const { return !has_review || (k < reviewed.size() && reviewed[k]); }
+  bool isReviewed(std::size_t k) const {
+    return !has_review || (k < reviewed.size() && reviewed[k]);
+  }
   /// Positions of the sweeps nobody reviewed (none without a `# reviewed` line).
   std::vector<std::size_t> unreviewedSweeps() const;
   /// Throws LabelFileError naming `path`, how many sweeps are unreviewed and the first ones.

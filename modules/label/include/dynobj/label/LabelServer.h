@@ -24,11 +24,11 @@
 namespace dynobj::label {
 
 struct ServerOptions {
-  int port = 8080;            ///< 0 = any free port
-  std::string page_dir;       ///< share/dynobj/label
-  std::string output;         ///< base name of the saved files (LabelSession::save)
-  std::string rawlog;         ///< recorded in the session file
-  double autosave_s = 2.0;    ///< save this often when something changed (0 = only on request)
+  int port = 8080;          ///< 0 = any free port
+  std::string page_dir;     ///< share/dynobj/label
+  std::string output;       ///< base name of the saved files (LabelSession::save)
+  std::string rawlog;       ///< recorded in the session file
+  double autosave_s = 2.0;  ///< save this often when something changed (0 = only on request)
 };
 
 class LabelServer {

@@ -110,8 +110,8 @@ class LabelSession {
   /// within 1 row / 3 columns), never into ground or pixels of other objects than `id` (-1: any
   /// object is blocked). `distance` / `max_extent` <= 0: the session's. Returns the pixels;
   /// throws LabelError when there is no return to start from.
-  std::vector<std::uint32_t> grow(std::size_t k, int row, int col, int id = -1,
-                                  double distance = 0, double max_extent = 0);
+  std::vector<std::uint32_t> grow(std::size_t k, int row, int col, int id = -1, double distance = 0,
+                                  double max_extent = 0);
 
   /// Sets object `id`'s pixels in sweep k (empty = removes it from k); its pixels leave any other
   /// object of k. A proposal (`state` != confirmed) makes the sweep unreviewed.

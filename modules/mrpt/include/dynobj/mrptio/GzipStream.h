@@ -63,7 +63,7 @@ class GzipInputStream : public mrpt::io::CStream {
   bool isGzip() const { return gzip_; }
 
  private:
-  bool fill();     // more compressed input; false at the end of the file
+  bool fill();  // more compressed input; false at the end of the file
   /// Up to `cap` decompressed bytes into `dst`; 0 at the end of the data.
   std::size_t inflateInto(std::uint8_t* dst, std::size_t cap);
 

@@ -24,9 +24,9 @@ struct RawlogFilterOptions {
   DynamicObjectFilter::Options filter;
   std::size_t from = 0;  ///< first entry to filter (earlier ones are copied)
   std::size_t to = std::numeric_limits<std::size_t>::max();  ///< last entry to filter
-  std::string labels_out;  ///< also the detections as a label file v1 ("" = no; one sensor only)
-  std::string tracks_out;  ///< also the tracked objects as CSV ("" = no)
-  bool overwrite = false;  ///< replace an existing output (never the input itself)
+  std::string labels_out;     ///< also the detections as a label file v1 ("" = no; one sensor only)
+  std::string tracks_out;     ///< also the tracked objects as CSV ("" = no)
+  bool overwrite = false;     ///< replace an existing output (never the input itself)
   int compression_level = 1;  ///< output: 0 = plain rawlog, 1 (fastest) .. 3 gzip
   unsigned threads = 0;       ///< 1 = read, detect, write one after another; 0 = one per core
   /// Called after each entry with (entries done, the filter's summary so far). With threads > 1

@@ -32,10 +32,10 @@ class RawlogIndex {
   };
 
   struct Sweep {
-    std::uint64_t offset = 0;        ///< uncompressed byte offset of the entry holding it
-    std::size_t entry = 0;           ///< rawlog entry number (0-based)
-    std::uint32_t in_entry = 0;      ///< position among the entry's observations
-    std::int64_t timestamp_ns = 0;   ///< the observation's time
+    std::uint64_t offset = 0;       ///< uncompressed byte offset of the entry holding it
+    std::size_t entry = 0;          ///< rawlog entry number (0-based)
+    std::uint32_t in_entry = 0;     ///< position among the entry's observations
+    std::int64_t timestamp_ns = 0;  ///< the observation's time
     std::optional<Eigen::Isometry3d> odometry;  ///< robot pose of the latest odometry before it
   };
 

@@ -4,19 +4,19 @@
 //
 // Format: what MRPT's CFileGZOutputStream writes, byte for byte once decompressed (objects
 // serialized with CArchive one after the other), compressed as a sequence of independent gzip
-// members of ~1 MiB each (ISA-L, GzipStream.h) instead of one zlib stream. A gzip file may hold several
-// members (RFC 1952 §2.2); zlib's gzread(), hence MRPT's CFileGZInputStream and every stock MRPT
-// tool, reads them all. Independent members can be compressed in parallel: with `threads` > 1,
+// members of ~1 MiB each (ISA-L, GzipStream.h) instead of one zlib stream. A gzip file may hold
+// several members (RFC 1952 §2.2); zlib's gzread(), hence MRPT's CFileGZInputStream and every stock
+// MRPT tool, reads them all. Independent members can be compressed in parallel: with `threads` > 1,
 // blocks are compressed by a pool of worker threads while the caller goes on serializing, and
 // written in order. Level 0 writes a plain (uncompressed) rawlog, which MRPT reads as well.
 #pragma once
 
 #include <mrpt/serialization/CSerializable.h>
 
-#include "dynobj/mrptio/GzipStream.h"
-
 #include <memory>
 #include <string>
+
+#include "dynobj/mrptio/GzipStream.h"
 
 namespace dynobj::mrptio {
 
