@@ -95,7 +95,7 @@ double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpa
     const int r = px / W, c = px % W;
     const float range = frame.range(r, c);
     if (range <= 0) continue;
-    const double tol = p.margin + p.range_factor * range;
+    const double tol = p.tolerance(range);
     int valid = 0, agree = 0;
     for (int dr = -1; dr <= 1; ++dr) {
       const int rr = r + dr;
@@ -126,31 +126,25 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
       old->size() != frame.range.size())
     return e;
   const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
-  const SphericalProjection& proj = *proj_;
   const int W = frame.cols();
-  for (int px : cluster.pixels) {
-    const cv::Vec3f& p = frame.xyz(px / W, px % W);
-    const Eigen::Vector3d q = T * Eigen::Vector3d(p[0], p[1], p[2]);
-    int r = -1, c = -1;
-    if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) {
-      e.unknown++;
-      continue;
+  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`.
+  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen) {
+    for (int px : cluster.pixels) {
+      const cv::Vec3f& p = frame.xyz(px / W, px % W);
+      const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
+      int r = -1, c = -1;
+      if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) {
+        e.unknown++;
+        continue;
+      }
+      const double expected = q.norm();
+      tally(e, seen(r, c), expected, p_.tolerance(expected));
     }
-    const double expected = q.norm();
-    tally(e, (*old)(r, c), expected, p_.margin + p_.range_factor * expected);
-  }
+  };
+  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old);
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
-  for (int px : cluster.pixels) {  // no verdict (hidden then): the space it left, seen now
-    const cv::Vec3f& p = frame.xyz(px / W, px % W);
-    const Eigen::Vector3d q = Eigen::Vector3d(p[0], p[1], p[2]) - *shift;
-    int r = -1, c = -1;
-    if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) {
-      e.unknown++;
-      continue;
-    }
-    const double expected = q.norm();
-    tally(e, frame.range(r, c), expected, p_.margin + p_.range_factor * expected);
-  }
+  // No verdict (hidden then): the space it left, seen now.
+  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range);
   return e;
 }
 

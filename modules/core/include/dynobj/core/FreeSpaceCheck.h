@@ -37,6 +37,9 @@ struct FreeSpaceParams : public StageParams {
   /// a mover (0 = off). Beyond the paper (docs/algorithm.md 7b).
   double min_solid_ratio = 0.3;
 
+  /// [m] two ranges near `range` agree within this: margin + range_factor x range.
+  double tolerance(double range) const { return margin + range_factor * range; }
+
   void visit(ParamVisitor& v) override;
   void validate() const override;
 };
