@@ -198,7 +198,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
   free_space_.remember(frame_index_, frame);
-  refiner_.remember(frame);
+  refiner_.remember(frame, ground_mask_);
   ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
   result_.dynamic.copyTo(prev_dynamic_);
 }

@@ -19,6 +19,9 @@ void EgoRefinementParams::visit(ParamVisitor& v) {
   v.value("final_distance", final_distance);
   v.value("huber", huber);
   v.value("damping", damping);
+  v.value("normal_baseline", normal_baseline);
+  v.value("ground_chain", ground_chain);
+  v.value("ground_flatness", ground_flatness);
   v.value("min_correspondences", min_correspondences);
   v.value("max_correction", max_correction);
   v.degrees("max_correction_angle", max_correction_angle);
@@ -34,6 +37,9 @@ void EgoRefinementParams::validate() const {
     throwParameterError("final_distance", "must not exceed max_distance");
   requirePositive("huber", huber);
   requireInRange("damping", damping, 0, 1e6);
+  requireInRange("normal_baseline", normal_baseline, 0, 10);
+  requireInRange("ground_chain", ground_chain, 0, 1000);
+  requirePositive("ground_flatness", ground_flatness);
   requireInRange("min_correspondences", min_correspondences, 6, 10000000);
   requirePositive("max_correction", max_correction);
   requirePositive("max_correction_angle", max_correction_angle);
@@ -42,21 +48,9 @@ void EgoRefinementParams::validate() const {
 namespace {
 
 constexpr std::size_t kCoarseStride = 4;  ///< coarse steps use every 4th sampled point
-
-/// Normal of the range image at (r, c) from its four neighbours (columns wrap), or (0,0,0) when a
-/// neighbour is missing (range 0) or lies on another surface (range jump).
-cv::Vec3f normalAt(const cv::Mat_<float>& range, const cv::Mat_<cv::Vec3f>& xyz, int r, int c) {
-  const int rows = range.rows, cols = range.cols;
-  const float here = range(r, c);
-  if (r == 0 || r == rows - 1 || here <= 0) return {0, 0, 0};
-  const int cl = (c + cols - 1) % cols, cr = (c + 1) % cols;
-  const float jump = 0.1f * here + 0.1f;
-  for (const float n : {range(r, cl), range(r, cr), range(r - 1, c), range(r + 1, c)})
-    if (n <= 0 || std::abs(n - here) > jump) return {0, 0, 0};
-  const cv::Vec3f n = (xyz(r, cr) - xyz(r, cl)).cross(xyz(r + 1, c) - xyz(r - 1, c));
-  const float len = static_cast<float>(cv::norm(n));
-  return len > 1e-9f ? n / len : cv::Vec3f(0, 0, 0);
-}
+/// A normal whose baseline would span more than this azimuth belongs to a point within ~1 m of
+/// the sensor (the platform itself, mostly): none is computed there.
+constexpr double kMaxNormalSpan = 6.0 * M_PI / 180.0;
 
 Eigen::Isometry3d expSE3(const Eigen::Matrix<double, 6, 1>& xi) {  // (omega, v), left increment
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -69,12 +63,71 @@ Eigen::Isometry3d expSE3(const Eigen::Matrix<double, 6, 1>& xi) {  // (omega, v)
 
 }  // namespace
 
+/// Normal of the previous range image at (r, c), or (0,0,0) where there is none. Its first
+/// direction joins the returns `k` columns either side, k the fewest columns at least
+/// normal_baseline apart, every step between them on the same surface (range jump below
+/// 0.1 x range + 0.1 m). Its second joins the rows above and below, on the same surface; on a
+/// ground pixel where they are not (a ring gap), the nearest ground returns above and below when
+/// they are close and in line with it (ground_chain, ground_flatness).
+cv::Vec3f EgoMotionRefiner::normalAt(int r, int c) const {
+  const cv::Mat_<float>& range = prev_range_;
+  const cv::Mat_<cv::Vec3f>& xyz = prev_xyz_;
+  const int rows = range.rows, cols = range.cols;
+  const float here = range(r, c);
+  if (here <= 0) return {0, 0, 0};
+  const float jump = 0.1f * here + 0.1f;
+  auto sameSurface = [&](int rr, int cc) {
+    const float n = range(rr, cc);
+    return n > 0 && std::abs(n - here) <= jump;
+  };
+  const bool vertical = r > 0 && r < rows - 1 && sameSurface(r - 1, c) && sameSurface(r + 1, c);
+  const bool ground =
+      !vertical && p_.ground_chain > 0 && !prev_ground_.empty() && prev_ground_(r, c);
+  if (!vertical && !ground) return {0, 0, 0};
+
+  const double step = here * 2.0 * M_PI / cols;  // [m] between adjacent columns
+  const int k = std::max(1, static_cast<int>(std::ceil(p_.normal_baseline / step)));
+  if (k * 2.0 * M_PI / cols > kMaxNormalSpan) return {0, 0, 0};
+  for (const int dir : {-1, 1}) {
+    float last = here;
+    for (int j = 1; j <= k; j++) {
+      const float n = range(r, (c + dir * j + cols) % cols);
+      if (n <= 0 || std::abs(n - last) > jump) return {0, 0, 0};
+      last = n;
+    }
+  }
+  const cv::Vec3f across = xyz(r, (c + k) % cols) - xyz(r, (c + cols - k) % cols);
+
+  cv::Vec3f along;
+  if (vertical) {
+    along = xyz(r + 1, c) - xyz(r - 1, c);
+  } else {  // the ground chain
+    int up = r + 1, down = r - 1;
+    while (up < rows && !prev_ground_(up, c)) up++;
+    while (down >= 0 && !prev_ground_(down, c)) down--;
+    const cv::Vec3f a = up < rows ? xyz(up, c) : xyz(r, c);
+    const cv::Vec3f b = down >= 0 ? xyz(down, c) : xyz(r, c);
+    along = a - b;
+    const double len = cv::norm(along);
+    if (len < 1e-6 || len > p_.ground_chain) return {0, 0, 0};
+    if (up < rows && down >= 0 && cv::norm(along.cross(xyz(r, c) - b)) / len > p_.ground_flatness)
+      return {0, 0, 0};  // a kerb or a step between them
+  }
+  const cv::Vec3f n = across.cross(along);
+  const float len = static_cast<float>(cv::norm(n));
+  return len > 1e-9f ? n / len : cv::Vec3f(0, 0, 0);
+}
+
 EgoMotionRefiner::EgoMotionRefiner(const EgoRefinementParams& p) : p_(p) {
   p_.validate();
 }
 
-void EgoMotionRefiner::remember(const LidarFrame& f) {
+void EgoMotionRefiner::remember(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground) {
   if (!p_.enabled) return;
+  if (ground.size() == f.range.size())
+    ground.copyTo(prev_ground_);
+  else
+    prev_ground_.release();
   if (!proj_ || proj_->sensor().rows != f.rows() || proj_->sensor().cols != f.cols())
     proj_.emplace(f.sensor);
   f.range.copyTo(prev_range_);
@@ -125,7 +178,7 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
       if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) continue;
       if (use_exclude && exclude_prev(r, c)) continue;
       cv::Vec3f& nv = prev_normal_(r, c);
-      if (std::isnan(nv[0])) nv = normalAt(prev_range_, prev_xyz_, r, c);
+      if (std::isnan(nv[0])) nv = normalAt(r, c);
       if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue;
       const cv::Vec3f& sv = prev_xyz_(r, c);
       const Eigen::Vector3d s(sv[0], sv[1], sv[2]), nn(nv[0], nv[1], nv[2]);

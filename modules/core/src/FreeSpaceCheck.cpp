@@ -16,6 +16,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("min_evidence", min_evidence);
   v.value("require_proof", require_proof);
   v.value("lookback", lookback);
+  v.value("side_rays", side_rays);
   v.value("min_solid_ratio", min_solid_ratio);
 }
 
@@ -25,6 +26,7 @@ void FreeSpaceParams::validate() const {
   requireInRange("min_free_ratio", min_free_ratio, 0, 1);
   requireInRange("min_evidence", min_evidence, 0, 1000000);
   requireInRange("lookback", lookback, 1, 1000);
+  requireInRange("side_rays", side_rays, 0, 100);
   requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
 }
 
@@ -75,6 +77,20 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 }
 
 }  // namespace
+
+double FreeSpaceCheck::nearestBeside(const cv::Mat_<float>& seen, int r, int c,
+                                     double expected) const {
+  const double own = seen(r, c), tol = p_.tolerance(expected);
+  if (own <= expected + tol) return own;  // not through: its own ray decides
+  const int W = seen.cols;
+  double nearest = own;
+  for (int dc = -p_.side_rays; dc <= p_.side_rays; ++dc) {
+    const float n = seen(r, ((c + dc) % W + W) % W);
+    if (n > 0) nearest = std::min<double>(nearest, n);
+  }
+  if (nearest > expected + tol) return own;           // every ray beside it went through too
+  return nearest >= expected - tol ? expected : 0.0;  // a surface beside it / hidden: no proof
+}
 
 double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpaceParams& p) {
   const int H = frame.rows(), W = frame.cols();
@@ -138,7 +154,7 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
         continue;
       }
       const double expected = q.norm();
-      tally(e, seen(r, c), expected, p_.tolerance(expected));
+      tally(e, nearestBeside(seen, r, c, expected), expected, p_.tolerance(expected));
     }
   };
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old);

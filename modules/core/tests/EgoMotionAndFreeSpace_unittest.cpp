@@ -240,3 +240,70 @@ TEST(FreeSpaceCheck, ASeenThroughCandidateIsNotAMover) {
   EXPECT_FALSE(kept.porous);
   EXPECT_TRUE(kept.moving());
 }
+
+namespace {
+
+/// A 4 x 64 frame whose range at (r, c) is depth(r, c) (0 = no return), each point on its
+/// pixel's ray (column centre azimuth, row elevation), as the free-space test projects them.
+template <typename Depth>
+LidarFrame rayFrame(Depth depth) {
+  const auto s = dynobj::test::smallSensor(4, 64);
+  const auto elev = s.rowElevations();
+  LidarFrame f(s);
+  for (int r = 0; r < s.rows; r++)
+    for (int c = 0; c < s.cols; c++) {
+      const float d = depth(r, c);
+      if (d <= 0) continue;
+      const double az = -M_PI + (c + 0.5) * 2 * M_PI / s.cols,
+                   el = elev[static_cast<std::size_t>(r)];
+      const cv::Vec3f p(static_cast<float>(d * std::cos(el) * std::cos(az)),
+                        static_cast<float>(d * std::cos(el) * std::sin(az)),
+                        static_cast<float>(d * std::sin(el)));
+      f.setPixel(r, c, d, 1, p, r * s.cols + c);
+    }
+  return f;
+}
+
+Cluster column(const LidarFrame& f, int c) {
+  Cluster k;
+  for (int r = 0; r < f.rows(); r++) k.pixels.push_back(r * f.cols() + c);
+  return k;
+}
+
+}  // namespace
+
+TEST(FreeSpaceCheck, AnOccludingEdgeThatShiftedByAColumnIsNotFreeSpace) {
+  // Before: a shelf (5 m) over columns 20-30, a wall (20 m) elsewhere, and a pole at 2 m in
+  // column 45. Now, seen from a little aside, the shelf's edge covers column 31, whose own ray
+  // went past it to the wall before: "free" by that ray alone, though the ray one column beside
+  // stopped on the shelf. A block that arrived in column 40 has wall on both sides before, and one
+  // in column 44 has the pole beside it (hidden: no verdict).
+  const LidarFrame before = rayFrame([](int, int c) {
+    if (c == 45) return 2.0F;
+    return c >= 20 && c <= 30 ? 5.0F : 20.0F;
+  });
+  const LidarFrame now = rayFrame(
+      [](int, int c) { return (c >= 20 && c <= 31) || c == 40 || c == 44 ? 5.0F : 20.0F; });
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  chain.push(1, Eigen::Isometry3d::Identity(), true);
+  auto evidence = [&](int side_rays, int c) {
+    FreeSpaceParams p;
+    p.side_rays = side_rays;
+    FreeSpaceCheck check(p);
+    check.remember(0, before);
+    return check.evidence(now, 1, column(now, c), 0, chain);
+  };
+  const FreeSpaceEvidence own = evidence(0, 31), beside = evidence(1, 31);
+  EXPECT_EQ(own.free, 4);
+  EXPECT_EQ(own.occupied, 0);
+  EXPECT_EQ(beside.free, 0);
+  EXPECT_EQ(beside.occupied, 4);
+  const FreeSpaceEvidence arrived = evidence(1, 40);
+  EXPECT_EQ(arrived.free, 4);
+  EXPECT_EQ(arrived.occupied, 0);
+  const FreeSpaceEvidence by_the_pole = evidence(1, 44);
+  EXPECT_EQ(by_the_pole.free + by_the_pole.occupied, 0);
+  EXPECT_EQ(by_the_pole.unknown, 4);
+  EXPECT_EQ(evidence(0, 44).free, 4);
+}

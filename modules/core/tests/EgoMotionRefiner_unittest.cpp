@@ -3,6 +3,8 @@
 #include <dynobj/core/EgoMotionRefiner.h>
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "SyntheticScene.h"
 
 using namespace dynobj::core;
@@ -35,7 +37,93 @@ EgoRefinement refineBetween(Scene scene, const Eigen::Isometry3d& motion,
   return refiner.refine(cur, init, {});
 }
 
+/// Adds Gaussian range noise (seeded) to every return, moving each point along its ray.
+void addRangeNoise(LidarFrame& f, double sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      const float d = f.range(r, c);
+      if (d <= 0) continue;
+      const auto scale = static_cast<float>((d + noise(rng)) / d);
+      f.range(r, c) *= scale;
+      f.xyz(r, c) *= scale;
+    }
+}
+
+/// The translation error along x after refining `init` between two noisy frames of `scene`.
+double alongTrackError(Scene scene, const Eigen::Isometry3d& truth, const Eigen::Isometry3d& init,
+                       const EgoRefinementParams& p) {
+  const auto s = dynobj::test::smallSensor(64, 1024);
+  LidarFrame prev = dynobj::test::render(scene, s, true, 1);
+  scene.sensor = truth;
+  LidarFrame cur = dynobj::test::render(scene, s, true, 2);
+  addRangeNoise(prev, 0.02, 1);
+  addRangeNoise(cur, 0.02, 2);
+  EgoMotionRefiner refiner(p);
+  refiner.remember(prev);
+  const EgoRefinement g = refiner.refine(cur, init, {});
+  EXPECT_TRUE(g.ok);
+  return std::abs((truth.inverse() * g.motion).translation().x());
+}
+
 }  // namespace
+
+TEST(EgoMotionRefiner, NoisyFloorNearTheSensorDoesNotHoldBackTheMotion) {
+  // 2 cm of range noise: on the floor 4 m away, adjacent columns (2.5 cm apart) give normals
+  // tilted at random. Such partners carry no residual along x but weigh on it, and a feature
+  // estimate 15 cm short along the track stays short. Neighbours normal_baseline apart (and a
+  // light damping) let the few posts that see the motion correct it.
+  Scene scene;
+  scene.room_radius = 100;  // beyond the 50 m range: an open field, posts the only landmarks
+  scene.posts = {{6, 2, 0.3, 2.0}, {-5, 4, 0.3, 2.5}};
+  const Eigen::Isometry3d truth = pose(0.3, 0, 0, 0);
+  const Eigen::Isometry3d init = truth * pose(-0.15, 0, 0, 0);
+  EXPECT_LT(alongTrackError(scene, truth, init, EgoRefinementParams{}), 0.005);  // 0.6 mm
+  EgoRefinementParams adjacent;  // the earlier normals (adjacent columns) and damping
+  adjacent.normal_baseline = 0;
+  adjacent.damping = 0.01;
+  EXPECT_GT(alongTrackError(scene, truth, init, adjacent), 0.02);  // 2.8 cm
+}
+
+TEST(EgoMotionRefiner, TheGroundChainGivesA16RowSensorItsHeight) {
+  // 16 rows 2 degrees apart: adjacent rings on the floor lie 0.6 m and more apart, no floor pixel
+  // has vertical neighbours on its surface, and walls and posts are vertical: nothing sees the
+  // height. Through the ground mask, each floor normal joins the nearest floor rings instead.
+  Scene scene;
+  scene.room_radius = 30;  // far enough that no floor ring meets the wall; no posts on the floor
+  const auto s = dynobj::test::smallSensor(16, 1024);
+  const LidarFrame prev = dynobj::test::render(scene, s, true, 1);
+  const Eigen::Isometry3d truth = pose(0.2, 0, 0, 1.0);
+  scene.sensor = truth;
+  const LidarFrame cur = dynobj::test::render(scene, s, true, 2);
+  cv::Mat_<std::uint8_t> ground(prev.rows(), prev.cols(), std::uint8_t{0});
+  for (int r = 0; r < prev.rows(); r++)
+    for (int c = 0; c < prev.cols(); c++)
+      if (prev.isValid(r, c) && prev.xyz(r, c)[2] < -0.95f) ground(r, c) = 255;
+  ASSERT_GT(cv::countNonZero(ground), 1000);
+  const Eigen::Isometry3d init = truth * pose(0, 0, 0.05, 0);  // 5 cm high
+
+  EgoMotionRefiner with;
+  with.remember(prev, ground);
+  const EgoRefinement a = with.refine(cur, init, {});
+  ASSERT_TRUE(a.ok);
+  EXPECT_LT(std::abs((truth.inverse() * a.motion).translation().z()), 0.005);
+
+  EgoMotionRefiner without;  // no ground mask: the height stays where the estimate put it
+  without.remember(prev);
+  const EgoRefinement b = without.refine(cur, init, {});
+  ASSERT_TRUE(b.ok);
+  EXPECT_GT(std::abs((truth.inverse() * b.motion).translation().z()), 0.03);
+
+  EgoRefinementParams off;
+  off.ground_chain = 0;
+  EgoMotionRefiner disabled(off);
+  disabled.remember(prev, ground);
+  const EgoRefinement c = disabled.refine(cur, init, {});
+  ASSERT_TRUE(c.ok);
+  EXPECT_GT(std::abs((truth.inverse() * c.motion).translation().z()), 0.03);
+}
 
 TEST(EgoMotionRefiner, CorrectsAFeatureEstimateOnTheGeometry) {
   Scene scene;
@@ -76,13 +164,15 @@ TEST(EgoMotionRefiner, CoarseFirstStepsReachTheMotionOfTheFullSteps) {
 TEST(EgoMotionRefiner, KeepsTheEstimateWhereTheGeometryIsSilent) {
   // A round room without posts, the sensor at its centre: turning about the vertical axis changes
   // nothing the geometry can see, so the estimate's yaw must survive while its offset is fixed.
+  // (With the default damping of 0.001 the pixel grid moves it by 0.06 degrees of 0.5; it moved
+  // by less than 0.05 at the earlier 0.01, which held weakly seen directions too firmly.)
   Scene scene;
   const Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d init = pose(0.06, 0.04, 0.03, 0.5);
   const EgoRefinement g = refineBetween(scene, truth, init);
   ASSERT_TRUE(g.ok);
   EXPECT_LT(g.motion.translation().norm(), 0.01);
-  EXPECT_NEAR(yawOf(g.motion) * 180 / M_PI, 0.5, 0.05);
+  EXPECT_NEAR(yawOf(g.motion) * 180 / M_PI, 0.5, 0.1);
 }
 
 TEST(EgoMotionRefiner, WithoutAPreviousFrameOrPartnersTheEstimateIsKept) {
@@ -136,5 +226,14 @@ TEST(EgoMotionRefiner, ParametersNameTheBadKey) {
   EXPECT_THROW(p.validate(), ParameterError);
   p = {};
   p.coarse_iterations = -1;
+  EXPECT_THROW(p.validate(), ParameterError);
+  p = {};
+  p.normal_baseline = -0.1;
+  EXPECT_THROW(p.validate(), ParameterError);
+  p = {};
+  p.ground_chain = -1;
+  EXPECT_THROW(p.validate(), ParameterError);
+  p = {};
+  p.ground_flatness = 0;
   EXPECT_THROW(p.validate(), ParameterError);
 }

@@ -24,13 +24,22 @@ namespace dynobj::core {
 
 struct EgoRefinementParams : public StageParams {
   bool enabled = true;
-  int points = 3000;              ///< pixels of the current frame sampled (evenly)
-  int iterations = 8;             ///< Gauss-Newton steps at most, of which the first ...
-  int coarse_iterations = 3;      ///< ... this many use every 4th sampled point (coarse to fine)
-  double max_distance = 0.5;      ///< [m] partners farther apart are ignored (first step) ...
-  double final_distance = 0.2;    ///< [m] ... shrinking linearly to this at the last step
-  double huber = 0.05;            ///< [m] Huber kernel width on point-to-plane residuals
-  double damping = 0.01;          ///< step damping, relative to the mean information per axis
+  int points = 3000;            ///< pixels of the current frame sampled (evenly)
+  int iterations = 8;           ///< Gauss-Newton steps at most, of which the first ...
+  int coarse_iterations = 3;    ///< ... this many use every 4th sampled point (coarse to fine)
+  double max_distance = 0.5;    ///< [m] partners farther apart are ignored (first step) ...
+  double final_distance = 0.2;  ///< [m] ... shrinking linearly to this at the last step
+  double huber = 0.05;          ///< [m] Huber kernel width on point-to-plane residuals
+  double damping = 0.001;       ///< step damping, relative to the mean information per axis
+  /// [m] a normal's two neighbours in its row are at least this far apart (near the sensor the
+  /// adjacent columns are millimetres apart and their range noise would tilt it at random)
+  double normal_baseline = 0.1;
+  /// [m] on a ground pixel whose vertical neighbours are not on its surface (the ring gap of a
+  /// 16-row sensor), the normal's second direction runs between the nearest ground returns above
+  /// and below in the column, when they are at most this far apart (0 = off) ...
+  double ground_chain = 3.0;
+  double ground_flatness =
+      0.05;  ///< [m] ... and the pixel lies this close to the line between them
   int min_correspondences = 300;  ///< fewer partners: the feature estimate is kept
   double max_correction = 0.5;    ///< [m] a larger change of translation is rejected ...
   double max_correction_angle = 3.0 * M_PI / 180.0;  ///< [rad] (INI: degrees) ... or of rotation
@@ -54,8 +63,9 @@ class EgoMotionRefiner {
   /// remembered frame of the same size: ok = false.
   EgoRefinement refine(const LidarFrame& frame, const Eigen::Isometry3d& init,
                        const cv::Mat_<std::uint8_t>& exclude_prev) const;
-  /// Keeps `frame`'s points as the previous frame of the next call (normals computed on demand).
-  void remember(const LidarFrame& frame);
+  /// Keeps `frame`'s points and its `ground` pixels (may be empty) as the previous frame of the
+  /// next call (normals computed on demand).
+  void remember(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& ground = {});
   void reset() { have_prev_ = false; }
   const EgoRefinementParams& params() const { return p_; }
 
@@ -65,8 +75,10 @@ class EgoMotionRefiner {
   /// The previous frame's range image, points and normals: a normal is computed when a partner
   /// first needs it (NaN = not yet; (0,0,0) = none there).
   cv::Mat_<float> prev_range_;
+  cv::Mat_<std::uint8_t> prev_ground_;  ///< empty: no ground mask was given
   cv::Mat_<cv::Vec3f> prev_xyz_;
   mutable cv::Mat_<cv::Vec3f> prev_normal_;
+  cv::Vec3f normalAt(int r, int c) const;
   std::optional<SphericalProjection> proj_;  ///< Eq. (1) of the remembered frame's sensor
 };
 

@@ -32,6 +32,11 @@ struct FreeSpaceParams : public StageParams {
   /// kept unless the evidence refutes it). Beyond the paper (docs/algorithm.md 7b).
   bool require_proof = true;
   int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept)
+  /// [columns] a point is in free space only if the rays this many columns either side of its own
+  /// also passed beyond it: an occluding edge (a shelf's end, a pole) shifts by a fraction of a
+  /// column between sweeps, and its own ray then grazes past it (0 = its own ray only). Beyond
+  /// the paper (docs/algorithm.md 7b).
+  int side_rays = 1;
   /// A candidate fewer of whose pixels than this lie on a solid surface (at least half of their
   /// returning 8-neighbours within margin + range_factor x range) is seen through: foliage, not
   /// a mover (0 = off). Beyond the paper (docs/algorithm.md 7b).
@@ -84,6 +89,11 @@ class FreeSpaceCheck {
   const FreeSpaceParams& params() const { return p_; }
 
  private:
+  /// The range `seen` gives the ray test of a point expected at `expected` through (r, c): its
+  /// own ray's, unless that went through and a ray up to side_rays columns beside it did not
+  /// (then `expected`, occupied, when that ray stopped at the point, else 0, undecided).
+  double nearestBeside(const cv::Mat_<float>& seen, int r, int c, double expected) const;
+
   FreeSpaceParams p_;
   std::size_t history_;
   std::deque<std::pair<long, cv::Mat_<float>>> ranges_;
