@@ -216,7 +216,10 @@ quick_matrix() {
 
 # Ego-motion error against the true poses (dynobj-detect --ego-truth: RMS per frame pair), the
 # detector with and without the geometric refinement, 100 sweeps per sequence.
-EGO_CELLS=("parking 102" "warehouse 101" "warehouse 102")
+# A cell: "scenario seed [sensor preset]" (a preset gets the intensity model of its make, as in the
+# matrix).
+EGO_CELLS=("parking 102" "warehouse 101" "warehouse 102" "parking 2 os0-64" "parking 2 os1-32"
+           "parking 201 vlp-16" "plaza 101" "street 101 vlp-16")
 ego_error() {
   local dir="$OUT/ego-error" md="$OUT/ego-error.md" cell s seed without with
   mkdir -p "$dir"
@@ -234,15 +237,22 @@ ego_error() {
     "$BIN/dynobj-detect" -i "$1" --ego-truth "${1%.rawlog}.gt.tum" -c "$2" |
       sed -n -E 's/.*translation RMS ([0-9.]+) m \(max ([0-9.]+)\), rotation RMS ([0-9.]+) deg.*/\1 m \/ \3° (max \2 m)/p'
   }
+  local sensor sets
   for cell in "${EGO_CELLS[@]}"; do
-    read -r s seed <<< "$cell"
-    log "ego error: ${s} seed ${seed}"
-    simulate "$s" "$dir/sim" --frames 100 --seed "$seed"
+    read -r s seed sensor <<< "$cell"
+    sets=()
+    case "$sensor" in
+      "") ;;
+      vlp-*|hdl-*) sets=(--set "sensor=sensors/$sensor.ini" --set intensity.model=velodyne) ;;
+      *) sets=(--set "sensor=sensors/$sensor.ini" --set intensity.model=ouster) ;;
+    esac
+    log "ego error: ${s} seed ${seed}${sensor:+ on $sensor}"
+    simulate "$s" "$dir/sim" --frames 100 --seed "$seed" "${sets[@]}"
     local rawlog
     rawlog=$(ls "$dir"/sim/*.rawlog)
     without=$(ego_rms "$rawlog" "$dir/no-refinement.ini")
     with=$(ego_rms "$rawlog" "$CONFIG")
-    echo "| ${s} seed ${seed} | ${without} | ${with} |" >> "$md.partial"
+    echo "| ${s} seed ${seed}${sensor:+ (${sensor})} | ${without} | ${with} |" >> "$md.partial"
   done
   mv "$md.partial" "$md"
   log "ego error: ${md}"
