@@ -34,10 +34,7 @@ if [ "${1:-}" = "--cell" ]; then
   rm -rf "$dir" && mkdir -p "$dir"
   sets=(--set "sensor=sensors/$sensor.ini" --set "motion_distortion=$([ "$md" = md ] && echo true || echo false)")
   case "$INTENSITY" in
-    auto) case "$sensor" in
-            vlp-*|hdl-*) sets+=(--set intensity.model=velodyne) ;;
-            *) sets+=(--set intensity.model=ouster) ;;
-          esac ;;
+    auto) sets+=(--set "intensity.model=$(intensity_model_of "$sensor")") ;;
     ouster|velodyne) sets+=(--set "intensity.model=$INTENSITY") ;;
   esac
   t0=$(date +%s)

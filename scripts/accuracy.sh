@@ -241,11 +241,8 @@ ego_error() {
   for cell in "${EGO_CELLS[@]}"; do
     read -r s seed sensor <<< "$cell"
     sets=()
-    case "$sensor" in
-      "") ;;
-      vlp-*|hdl-*) sets=(--set "sensor=sensors/$sensor.ini" --set intensity.model=velodyne) ;;
-      *) sets=(--set "sensor=sensors/$sensor.ini" --set intensity.model=ouster) ;;
-    esac
+    [ -z "$sensor" ] ||
+      sets=(--set "sensor=sensors/$sensor.ini" --set "intensity.model=$(intensity_model_of "$sensor")")
     log "ego error: ${s} seed ${seed}${sensor:+ on $sensor}"
     simulate "$s" "$dir/sim" --frames 100 --seed "$seed" "${sets[@]}"
     local rawlog

@@ -12,6 +12,9 @@ DYNOBJ_PACKAGES=(cmake make g++ libmrpt-dev mrpt-apps mrpt-common libopencv-dev 
                  libcpp-httplib-dev)
 
 log() { printf '[dynobj] %s\n' "$*"; }
+# intensity_model_of <sensor preset>: the intensity model of its make (Velodyne presets vlp-*,
+# hdl-*: velodyne 0-255; the others: ouster signal), as dynobj-sim's intensity.model takes it.
+intensity_model_of() { case "$1" in vlp-*|hdl-*) echo velodyne ;; *) echo ouster ;; esac; }
 
 # ensure_packages [extra packages...]
 ensure_packages() {

@@ -81,8 +81,7 @@ cv::Vec3f EgoMotionRefiner::normalAt(int r, int c) const {
     return n > 0 && std::abs(n - here) <= jump;
   };
   const bool vertical = r > 0 && r < rows - 1 && sameSurface(r - 1, c) && sameSurface(r + 1, c);
-  const bool ground =
-      !vertical && p_.ground_chain > 0 && !prev_ground_.empty() && prev_ground_(r, c);
+  const bool ground = !vertical && !prev_ground_.empty() && prev_ground_(r, c);
   if (!vertical && !ground) return {0, 0, 0};
 
   const double step = here * 2.0 * M_PI / cols;  // [m] between adjacent columns
@@ -124,7 +123,7 @@ EgoMotionRefiner::EgoMotionRefiner(const EgoRefinementParams& p) : p_(p) {
 
 void EgoMotionRefiner::remember(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground) {
   if (!p_.enabled) return;
-  if (ground.size() == f.range.size())
+  if (p_.ground_chain > 0 && ground.size() == f.range.size())  // only the chain reads it
     ground.copyTo(prev_ground_);
   else
     prev_ground_.release();

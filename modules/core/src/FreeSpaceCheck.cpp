@@ -78,18 +78,16 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 
 }  // namespace
 
-double FreeSpaceCheck::nearestBeside(const cv::Mat_<float>& seen, int r, int c,
-                                     double expected) const {
-  const double own = seen(r, c), tol = p_.tolerance(expected);
-  if (own <= expected + tol) return own;  // not through: its own ray decides
+double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const {
+  const double own = seen(r, c);
+  if (own <= through) return own;  // it did not go through: its own ray decides
   const int W = seen.cols;
   double nearest = own;
   for (int dc = -p_.side_rays; dc <= p_.side_rays; ++dc) {
     const float n = seen(r, ((c + dc) % W + W) % W);
     if (n > 0) nearest = std::min<double>(nearest, n);
   }
-  if (nearest > expected + tol) return own;           // every ray beside it went through too
-  return nearest >= expected - tol ? expected : 0.0;  // a surface beside it / hidden: no proof
+  return nearest;
 }
 
 double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpaceParams& p) {
@@ -153,8 +151,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
         e.unknown++;
         continue;
       }
-      const double expected = q.norm();
-      tally(e, nearestBeside(seen, r, c, expected), expected, p_.tolerance(expected));
+      const double expected = q.norm(), tol = p_.tolerance(expected);
+      tally(e, rayBeside(seen, r, c, expected + tol), expected, tol);
     }
   };
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old);

@@ -38,8 +38,8 @@ struct EgoRefinementParams : public StageParams {
   /// 16-row sensor), the normal's second direction runs between the nearest ground returns above
   /// and below in the column, when they are at most this far apart (0 = off) ...
   double ground_chain = 3.0;
-  double ground_flatness =
-      0.05;  ///< [m] ... and the pixel lies this close to the line between them
+  /// [m] ... and the pixel lies this close to the line between them
+  double ground_flatness = 0.05;
   int min_correspondences = 300;  ///< fewer partners: the feature estimate is kept
   double max_correction = 0.5;    ///< [m] a larger change of translation is rejected ...
   double max_correction_angle = 3.0 * M_PI / 180.0;  ///< [rad] (INI: degrees) ... or of rotation

@@ -89,10 +89,10 @@ class FreeSpaceCheck {
   const FreeSpaceParams& params() const { return p_; }
 
  private:
-  /// The range `seen` gives the ray test of a point expected at `expected` through (r, c): its
-  /// own ray's, unless that went through and a ray up to side_rays columns beside it did not
-  /// (then `expected`, occupied, when that ray stopped at the point, else 0, undecided).
-  double nearestBeside(const cv::Mat_<float>& seen, int r, int c, double expected) const;
+  /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless
+  /// that went `through` (beyond the point's range plus tolerance); then the nearest of it and
+  /// the returning rays up to side_rays columns beside it (at the point: occupied; nearer: hidden).
+  double rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const;
 
   FreeSpaceParams p_;
   std::size_t history_;
