@@ -20,6 +20,7 @@ void MovementParams::visit(ParamVisitor& v) {
   v.value("long_object_elongation", long_object_elongation);
   v.value("long_object_length", long_object_length);
   v.value("rigid_tolerance", rigid_tolerance);
+  v.value("long_object_ego_ratio", long_object_ego_ratio);
   v.value("max_speed", max_speed);
 }
 
@@ -34,6 +35,7 @@ void MovementParams::validate() const {
   requireInRange("long_object_elongation", long_object_elongation, 1, 1000);
   requireInRange("long_object_length", long_object_length, 0, 1000);
   requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
+  requireInRange("long_object_ego_ratio", long_object_ego_ratio, 0, 1000);
   requirePositive("max_speed", max_speed);
 }
 
@@ -111,7 +113,11 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
           std::acos(std::min(1.0, std::abs(vh.normalized().dot(Vh.normalized()))));  // Eq. (23)
       d.rigid = rigidMotion(window[window.size() - k], window.back(), chain.between(first, last), v,
                             d.displacement);
-      d.long_object = d.angle < p_.long_object_angle && !d.rigid;
+      // Beyond the paper: only where the viewpoint moved enough to make a static wall slide by f.
+      const double ego = chain.between(first, last).translation().norm();
+      const bool viewpoint_moved =
+          p_.long_object_ego_ratio <= 0 || ego * p_.long_object_ego_ratio >= d.displacement;
+      d.long_object = d.angle < p_.long_object_angle && !d.rigid && viewpoint_moved;
     }
   }
   return d;

@@ -260,10 +260,51 @@ TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
   EXPECT_TRUE(dw.candidate);
   EXPECT_FALSE(dw.rigid);
   EXPECT_TRUE(dw.long_object);
-  // rigid_tolerance = 0 restores the paper's Eq. (23) for every elongated cluster.
+  // rigid_tolerance = 0 restores the paper's Eq. (23) for every elongated cluster, with the
+  // default long_object_ego_ratio = 0 (with 1.5 Eq. 23 would not apply to this car either: it
+  // moved 1.2 m, more than 1.5 x the robot's 0.4 m).
   MovementParams paper;
   paper.rigid_tolerance = 0;
+  paper.long_object_ego_ratio = 1.5;
+  EXPECT_FALSE(MovementAnalyzer(paper).analyse(w, chain, car, 0.1).long_object);
+  paper.long_object_ego_ratio = 0;
   EXPECT_TRUE(MovementAnalyzer(paper).analyse(w, chain, car, 0.1).long_object);
+}
+
+TEST(MovementAnalyzer, Eq23NeedsTheViewpointToHaveMovedAsFarAsTheObject) {
+  // A long cluster moving along its own axis whose ends do not keep their distance (a car seen
+  // head-on: its visible extent grows as it nears): not a rigid mover.
+  Cluster car;
+  car.main_direction = Eigen::Vector2d(1, 0);
+  car.elongation = 3;
+  car.length = 4;
+  Window w;  // centroid +0.3 m/frame along X in the world, far end +0.1 m/frame only
+  for (long i = 0; i < 5; i++)
+    w.emplace_back(i, V3(2 + 0.3 * i, 3, 0), V3(0.3 * i, 3, 0), V3(4 + 0.1 * i, 3, 0));
+  FrameChain still(16);
+  for (long i = 0; i < 5; i++) still.push(i, Eigen::Isometry3d::Identity(), true);
+  MovementParams p;
+  p.long_object_ego_ratio = 0;  // the paper: Eq. (23) wherever the sensor is
+  const auto paper = MovementAnalyzer(p).analyse(w, still, car, 0.1);
+  EXPECT_NEAR(paper.displacement, 1.2, 1e-9);
+  EXPECT_FALSE(paper.rigid);
+  EXPECT_TRUE(paper.long_object);
+  p.long_object_ego_ratio = 1.5;
+  // A sensor standing still sees no wall slide: the object is judged on its motion alone.
+  const auto d = MovementAnalyzer(p).analyse(w, still, car, 0.1);
+  EXPECT_FALSE(d.long_object);
+  EXPECT_TRUE(d.moving());
+  // A sensor that travelled 0.4 m (walkingChain): 1.2 m > 1.5 x 0.4 m, still not a wall ...
+  const FrameChain walking = walkingChain(5);
+  Window moved;  // the same world motion, seen from the walking sensor
+  for (long i = 0; i < 5; i++)
+    moved.emplace_back(i, V3(2 + 0.2 * i, 3, 0), V3(0.2 * i, 3, 0), V3(4, 3, 0));
+  EXPECT_FALSE(MovementAnalyzer(p).analyse(moved, walking, car, 0.1).long_object);
+  // ... but a wall that slides with the walking sensor (f = 0.4 m <= 1.5 x 0.4 m) still is.
+  Window wall;
+  for (long i = 0; i < 5; i++)
+    wall.emplace_back(i, V3(1, 3, 0), V3(-1 - 0.1 * i, 3, 0), V3(3 + 0.1 * i, 3, 0));
+  EXPECT_TRUE(MovementAnalyzer(p).analyse(wall, walking, car, 0.1).long_object);
 }
 
 TEST(MovementAnalyzer, UnreliableEgoMotionInTheWindowGivesNoVerdict) {

@@ -25,7 +25,9 @@ struct ClusteringParams : public StageParams {
   double max_area = 20.0;   ///< [m^2] grid/kdtree with voxel > 0: clusters whose features fill
                             ///< more voxels than this area are dropped (facades, shelves); a car
                             ///< seen from 2 m fills ~10 m^2 (0 = no limit)
-  double max_length = 6.0;  ///< [m] longer clusters are dropped too (0 = no limit): cars fit
+  double max_length = 0.0;  ///< [m] longer clusters are dropped too (0 = no limit, the default:
+                            ///< a car seen head-on merges with what it passes, and buses and
+                            ///< trucks are longer; docs/algorithm.md §4)
   std::string search = "grid";  ///< neighbour search: grid | kdtree | image
   double voxel = 0.17;          ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
   int max_window = 16;          ///< image search: at most this many columns each side
