@@ -82,12 +82,12 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   for (std::size_t j = window.size() - k; j < window.size(); j++)
     cw.push_back(chain.between(first, window[j].frame) * window[j].centroid);
 
-  d.displacement = (cw.back() - cw.front()).norm();                                  // Eq. (19)
+  const Eigen::Isometry3d T_first_last = chain.between(first, last);  // current -> first
+  d.displacement = (cw.back() - cw.front()).norm();                   // Eq. (19)
   for (std::size_t j = 1; j < cw.size(); j++) d.path += (cw[j] - cw[j - 1]).norm();  // Eq. (20)
   const double duration = std::max(1e-6, static_cast<double>(last - first) * dt);
   d.speed = d.displacement / duration;
-  d.velocity =
-      chain.between(first, last).linear().transpose() * (cw.back() - cw.front()) / duration;
+  d.velocity = T_first_last.linear().transpose() * (cw.back() - cw.front()) / duration;
   d.candidate = d.displacement > p_.min_displacement && d.speed <= p_.max_speed;
   // Beyond the paper: the window lags a stop by up to k frames; its last few observations do not.
   const auto m = static_cast<std::size_t>(p_.stop_window);
@@ -104,17 +104,17 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   if (d.candidate && cluster.elongation >= p_.long_object_elongation &&
       cluster.length >= p_.long_object_length) {
     const Eigen::Vector3d v = (cw.back() - cw.front()) / d.displacement;  // Eq. (21)
-    const Eigen::Matrix3d R = chain.between(first, last).linear();        // current -> first frame
+    const Eigen::Matrix3d R = T_first_last.linear();                      // current -> first frame
     const Eigen::Vector3d V =
         R * Eigen::Vector3d(cluster.main_direction.x(), cluster.main_direction.y(), 0);
     const Eigen::Vector2d vh = v.head<2>(), Vh = V.head<2>();
     if (vh.norm() > 1e-9 && Vh.norm() > 1e-9) {
       d.angle =
           std::acos(std::min(1.0, std::abs(vh.normalized().dot(Vh.normalized()))));  // Eq. (23)
-      d.rigid = rigidMotion(window[window.size() - k], window.back(), chain.between(first, last), v,
-                            d.displacement);
+      d.rigid =
+          rigidMotion(window[window.size() - k], window.back(), T_first_last, v, d.displacement);
       // Beyond the paper: only where the viewpoint moved enough to make a static wall slide by f.
-      const double ego = chain.between(first, last).translation().norm();
+      const double ego = T_first_last.translation().norm();
       const bool viewpoint_moved =
           p_.long_object_ego_ratio <= 0 || ego * p_.long_object_ego_ratio >= d.displacement;
       d.long_object = d.angle < p_.long_object_angle && !d.rigid && viewpoint_moved;
