@@ -79,6 +79,9 @@ table1() {
 # One row per variant: "label|INI text" (printf escapes), evaluated on hall (300 sweeps).
 ABLATIONS=(
   "defaults|"
+  "online, no hindsight (\`[hindsight] lag = 0\`: the paper; what the per-observation filters give)|[hindsight]\nlag = 0\n"
+  "hindsight trusts a track at its first dynamic sweep (\`min_dynamic = 0\`)|[hindsight]\nmin_dynamic = 0\n"
+  "hindsight without the merge test (\`max_growth = 100\`)|[hindsight]\nmax_growth = 100\n"
   "paper's one-sided foreground \`B(f − h, θ)\` (\`absolute = false\`)|[foreground]\nabsolute = false\n"
   "no free-space check (\`[free_space] enabled = false\`; rigid movers can then never prove their motion)|[free_space]\nenabled = false\n"
   "no hysteresis|[tracking]\nhysteresis = false\n"

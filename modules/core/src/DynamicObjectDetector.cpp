@@ -36,6 +36,15 @@ std::vector<Eigen::Vector3d> centroidsOf(const std::vector<Cluster>& clusters) {
 
 }  // namespace
 
+DetectionResult DetectionResult::clone() const {
+  DetectionResult r = *this;
+  r.dynamic = dynamic.clone();
+  r.features = features.clone();
+  r.seeds = seeds.clone();
+  r.ground = ground.clone();
+  return r;
+}
+
 void DetectorParams::load(const mrpt::config::CConfigFileBase& c, const std::string& prefix) {
   DetectorParams p = *this;  // all or nothing: *this changes only if every section is valid
   p.forEachStage([&](const char* name, StageParams& stage) {
@@ -121,12 +130,12 @@ const DetectionResult& DynamicObjectDetector::process(
   DetectionResult& r = result_;
 
   // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
-  ground_.segment(frame, ground_mask_);
+  ground_.segment(frame, r.ground);
   r.timings.ground = clock.lap();
 
   // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
   const bool no_ground = params_.foreground.exclude_ground;
-  foreground_.extract(frame, no_ground ? ground_mask_ : cv::Mat_<std::uint8_t>(), r.features);
+  foreground_.extract(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(), r.features);
   r.timings.foreground = clock.lap();
 
   // III-B-1, Eq. (5): ego-motion between the previous frame and this one.
@@ -150,7 +159,7 @@ const DetectionResult& DynamicObjectDetector::process(
   r.timings.movement = clock.lap();
 
   // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
-  const std::vector<int> grown = grower_.grow(frame, ground_mask_, seeds, r.dynamic, owner_);
+  const std::vector<int> grown = grower_.grow(frame, r.ground, seeds, r.dynamic, owner_);
   r.timings.region_growing = clock.lap();
 
   endFrame(frame, grown);
@@ -198,7 +207,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
   free_space_.remember(frame_index_, frame);
-  refiner_.remember(frame, ground_mask_);
+  refiner_.remember(frame, result_.ground);
   ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
   result_.dynamic.copyTo(prev_dynamic_);
 }
@@ -221,6 +230,7 @@ void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::v
     o.points = static_cast<int>(c.pixels.size());
     o.dynamic = tr.dynamic;
     o.age = tr.age;
+    o.cluster = c.pixels;
     const auto it = std::find(seed_track_.begin(), seed_track_.end(), tr.id);
     if (it != seed_track_.end()) {  // a dynamic object: its extent is the grown region
       const auto obj = static_cast<std::size_t>(it - seed_track_.begin());

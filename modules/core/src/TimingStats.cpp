@@ -6,17 +6,19 @@
 #include <stdexcept>
 
 namespace dynobj::core {
-namespace {
 
-const char* const kStages[] = {"ground",      "foreground", "ego-motion",     "clustering",
-                               "association", "movement",   "region growing", "total"};
-
-}  // namespace
+const std::vector<std::string>& TimingStats::stages() {
+  static const std::vector<std::string> names{"ground",         "foreground",  "ego-motion",
+                                              "clustering",     "association", "movement",
+                                              "region growing", "hindsight",   "total"};
+  return names;
+}
 
 void TimingStats::add(const StageTimings& t) {
-  const double v[] = {t.ground,      t.foreground, t.ego_motion,     t.clustering,
-                      t.association, t.movement,   t.region_growing, t.total};
-  for (std::size_t i = 0; i < std::size(kStages); i++) ms_[kStages[i]].push_back(v[i]);
+  const double v[] = {t.ground,   t.foreground,     t.ego_motion, t.clustering, t.association,
+                      t.movement, t.region_growing, t.hindsight,  t.total};
+  static_assert(std::size(v) == 9, "one time per stage");
+  for (std::size_t i = 0; i < std::size(v); i++) ms_[stages()[i]].push_back(v[i]);
   frames_++;
 }
 
@@ -33,9 +35,9 @@ double TimingStats::percentile(const std::string& stage, double q) const {
 void TimingStats::print(std::ostream& out) const {
   char line[96];
   out << "  stage              median ms   p99 ms\n";
-  for (const char* s : kStages) {
+  for (const std::string& s : stages()) {
     if (!ms_.count(s)) continue;
-    std::snprintf(line, sizeof(line), "  %-18s %9.3f %8.3f\n", s, percentile(s, 50),
+    std::snprintf(line, sizeof(line), "  %-18s %9.3f %8.3f\n", s.c_str(), percentile(s, 50),
                   percentile(s, 99));
     out << line;
   }

@@ -263,9 +263,8 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
     s << ",\n     \"ms\": ";
     if (r.timing) {
       s << "{";
-      const char* stages[] = {"ground",      "foreground", "ego-motion",     "clustering",
-                              "association", "movement",   "region growing", "total"};
-      for (std::size_t i = 0; i < 8; i++)
+      const auto& stages = core::TimingStats::stages();
+      for (std::size_t i = 0; i < stages.size(); i++)
         s << (i ? ", " : "") << "\"" << stages[i]
           << "\": {\"median\": " << num(r.timing->percentile(stages[i], 50), 4)
           << ", \"p99\": " << num(r.timing->percentile(stages[i], 99), 4) << "}";

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mrptio/SequenceRunner.h"
 
+#include <algorithm>
+#include <set>
 #include <stdexcept>
 
 namespace dynobj::mrptio {
@@ -11,7 +13,10 @@ cv::Mat_<std::uint8_t> FrameResult::truthMask() const {
 }
 
 SequenceRunner::SequenceRunner(FrameSource& source, SequenceOptions opts)
-    : source_(source), opts_(std::move(opts)), bank_(opts_.detector) {
+    : source_(source),
+      opts_(std::move(opts)),
+      bank_(opts_.detector),
+      hindsight_(opts_.detector.hindsight, opts_.detector.region_growing) {
   if (!opts_.poses.empty()) poses_ = io::readPoseFile(opts_.poses, io::PoseFormat::Tum);
   if (!opts_.ground_truth.empty()) {
     truth_.emplace(opts_.ground_truth);
@@ -39,7 +44,7 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
         throw std::runtime_error(source_.describe() + " holds several LiDARs ('" + first_label_ +
                                  "', '" + f.sensor_label + "'): choose one with --sensor-label");
     }
-    FrameResult r{f, nullptr, nullptr, std::nullopt, nullptr, 0};
+    FrameResult r(f);
     if (truth_) r.truth = &truth_->sweep(f.frame, f.index, &r.truth_index);
     r.pose = poseOf(f);
     if (r.pose) {
@@ -51,11 +56,59 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
       prev = r.pose;
     }
     if (opts_.detect) r.detection = &bank_.process(f.sensor_label, f.frame, r.motion);
-    on_frame(r);
+    if (!opts_.detect || opts_.detector.hindsight.lag <= 0) {
+      on_frame(r);
+      continue;
+    }
+    hold(std::move(f), r);
+    f = Frame{};
+    release(on_frame, false);
   }
+  std::set<std::string> sensors;  // the recording ends: each sensor's last frame revises once more
+  for (const Held& h : held_) sensors.insert(h.frame.sensor_label);
+  for (const std::string& label : sensors) revise(label, true);
+  release(on_frame, true);
   if (n == 0 && opts_.require_frames)
     throw std::runtime_error("no LiDAR observation in " + source_.describe());
   return n;
+}
+
+void SequenceRunner::hold(Frame&& f, const FrameResult& r) {
+  Held& h = held_.emplace_back();
+  h.detection = r.detection->clone();  // the detector reuses its images
+  h.pose = r.pose;
+  h.motion = r.motion;
+  h.truth = r.truth;
+  h.truth_index = r.truth_index;
+  h.frame = std::move(f);
+  revise(h.frame.sensor_label, false);
+}
+
+void SequenceRunner::revise(const std::string& sensor_label, bool last) {
+  std::vector<core::Hindsight::Held> same_sensor;
+  for (Held& e : held_)
+    if (e.frame.sensor_label == sensor_label) same_sensor.push_back({&e.frame.frame, &e.detection});
+  hindsight_.revise(same_sensor, last);
+}
+
+void SequenceRunner::release(const std::function<void(const FrameResult&)>& on_frame, bool all) {
+  while (!held_.empty()) {
+    const Held& h = held_.front();
+    if (!all) {
+      const auto same = std::count_if(held_.begin(), held_.end(), [&](const Held& e) {
+        return e.frame.sensor_label == h.frame.sensor_label;
+      });
+      if (same <= hindsight_.heldFrames(h.frame.frame.sensor.frequency)) return;
+    }
+    FrameResult r(h.frame);
+    r.detection = &h.detection;
+    r.pose = h.pose;
+    r.motion = h.motion;
+    r.truth = h.truth;
+    r.truth_index = h.truth_index;
+    on_frame(r);
+    held_.pop_front();
+  }
 }
 
 }  // namespace dynobj::mrptio

@@ -33,6 +33,7 @@ class FakeFrames : public dm::FrameSource {
   }
   void rewind() override { k_ = 0; }
   std::string describe() const override { return "fake"; }
+  int produced() const { return k_; }
 
  private:
   int n_, k_ = 0;
@@ -77,6 +78,36 @@ TEST(SequenceRunner, OneDetectorPerSensorLabelAndTheOneSensorRule) {
   FakeFrames none(0, {"A"});
   expectThrowWith([&] { dm::SequenceRunner(none, {}).run([](const dm::FrameResult&) {}); },
                   "no LiDAR observation in fake");
+}
+
+TEST(SequenceRunner, HindsightHoldsEachSensorsFramesForTheLagAndKeepsTheirOrder) {
+  // 10 Hz frames, lag 1 s: the first callback comes once a sensor's 11th frame is detected; every
+  // frame still gets exactly one callback, in the source's order, the last ones at the end.
+  FakeFrames src(30, {"A", "B"});
+  dm::SequenceRunner runner(src, {});
+  std::vector<int> produced_at;
+  std::vector<std::size_t> order;
+  EXPECT_EQ(runner.run([&](const dm::FrameResult& r) {
+    ASSERT_NE(r.detection, nullptr);
+    EXPECT_EQ(r.detection->timestamp_ns, r.frame.frame.timestamp_ns);
+    produced_at.push_back(src.produced());
+    order.push_back(r.frame.index);
+  }),
+            30u);
+  ASSERT_EQ(order.size(), 30u);
+  for (std::size_t i = 0; i < order.size(); i++) EXPECT_EQ(order[i], i);
+  EXPECT_EQ(produced_at.front(), 21);  // frame 20 is A's 11th
+  EXPECT_EQ(produced_at.back(), 30);
+
+  FakeFrames online_src(5, {"A"});
+  dm::SequenceOptions online;
+  online.detector.hindsight.lag = 0;  // the paper's online behaviour: no frame is held
+  std::vector<int> at;
+  dm::SequenceRunner(online_src, online).run([&](const dm::FrameResult& r) {
+    at.push_back(online_src.produced());
+    EXPECT_EQ(static_cast<int>(r.frame.index) + 1, online_src.produced());
+  });
+  EXPECT_EQ(at, (std::vector<int>{1, 2, 3, 4, 5}));
 }
 
 TEST(SequenceRunner, PosesGiveEachSensorTheMotionSinceItsOwnPreviousFrame) {

@@ -18,6 +18,7 @@
 #include "dynobj/core/FrameChain.h"
 #include "dynobj/core/FreeSpaceCheck.h"
 #include "dynobj/core/GroundSegmenter.h"
+#include "dynobj/core/Hindsight.h"
 #include "dynobj/core/LidarFrame.h"
 #include "dynobj/core/MovementAnalyzer.h"
 #include "dynobj/core/RegionGrower.h"
@@ -38,6 +39,7 @@ struct DetectorParams {
   FreeSpaceParams free_space;
   TrackingParams tracking;
   RegionGrowingParams region_growing;
+  HindsightParams hindsight;  ///< used by offline runs (SequenceRunner), not by the detector
 
   /// Calls f(section name, stage parameters) for every stage, in pipeline order.
   template <class F>
@@ -52,6 +54,7 @@ struct DetectorParams {
     f("free_space", free_space);
     f("tracking", tracking);
     f("region_growing", region_growing);
+    f("hindsight", hindsight);
   }
   template <class F>
   void forEachStage(F&& f) const {
@@ -71,12 +74,13 @@ struct TrackedObject {
   Eigen::Vector3d box_min{0, 0, 0}, box_max{0, 0, 0};
   int points = 0;  ///< pixels of the object this frame (grown when dynamic)
   bool dynamic = false;
-  int age = 0;  ///< frames since first seen
+  int age = 0;               ///< frames since first seen
+  std::vector<int> cluster;  ///< its cluster's pixels this frame (row * cols + col)
 };
 
 struct StageTimings {
   double foreground = 0, ego_motion = 0, clustering = 0, association = 0, movement = 0, ground = 0,
-         region_growing = 0, total = 0;  ///< [ms]
+         region_growing = 0, hindsight = 0, total = 0;  ///< [ms]; hindsight: offline runs
 };
 
 struct DetectionResult {
@@ -85,9 +89,13 @@ struct DetectionResult {
   cv::Mat_<std::uint8_t> dynamic;      ///< 255 = dynamic pixel
   cv::Mat_<std::uint8_t> features;     ///< foreground feature pixels (Eq. 4), for inspection
   cv::Mat_<std::uint8_t> seeds;        ///< points of the accepted clusters (region-growing seeds)
+  cv::Mat_<std::uint8_t> ground;       ///< 255 = ground pixel (region growing never enters it)
   std::vector<TrackedObject> objects;  ///< tracks seen this frame
   EgoMotion ego_motion;
   StageTimings timings;
+
+  /// A copy that shares no pixel data with this one (the detector reuses its images).
+  DetectionResult clone() const;
 };
 
 class DynamicObjectDetector {
@@ -129,7 +137,7 @@ class DynamicObjectDetector {
 
   DetectionResult result_;
   std::vector<Cluster> clusters_;
-  cv::Mat_<std::uint8_t> ground_mask_, exclude_, prev_dynamic_;
+  cv::Mat_<std::uint8_t> exclude_, prev_dynamic_;
   cv::Mat_<int> owner_;
   std::vector<int> seed_track_;
   long frame_index_ = -1;

@@ -16,8 +16,10 @@ class TimingStats {
   /// Records one frame's stage timings.
   void add(const StageTimings& t);
   std::size_t frames() const { return frames_; }
-  /// q-th percentile (0..100) of a stage's times [ms]; stages: "ground", "foreground",
-  /// "ego-motion", "clustering", "association", "movement", "region growing", "total".
+  /// The stages, in pipeline order: "ground", "foreground", "ego-motion", "clustering",
+  /// "association", "movement", "region growing", "hindsight" (offline runs), "total".
+  static const std::vector<std::string>& stages();
+  /// q-th percentile (0..100) of a stage's times [ms].
   double percentile(const std::string& stage, double q) const;
   /// A table "stage  median ms  p99 ms", stages in pipeline order.
   void print(std::ostream& out) const;

@@ -4,11 +4,15 @@
 // with optional external motion (a TUM file of sensor poses, matched by timestamp: the motion
 // between a sensor's consecutive frames replaces the intensity ego-motion) and optional ground
 // truth (label file v1, matched by timestamp, same image size), one callback per frame.
+// With hindsight (DetectorParams::hindsight.lag > 0, the default) each frame is held that long
+// before its callback, so that tracks confirmed later flag their earlier clusters too
+// (core::Hindsight); the callbacks still come once per frame, in the source's order.
 #pragma once
 
 #include <dynobj/io/PoseFile.h>
 
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <map>
@@ -38,6 +42,7 @@ struct SequenceOptions {
 
 /// What the callback gets for each frame (valid during the call only).
 struct FrameResult {
+  explicit FrameResult(const Frame& f) : frame(f) {}
   const Frame& frame;
   const core::DetectionResult* detection = nullptr;  ///< null when SequenceOptions::detect is off
   const io::TimedPose* pose = nullptr;               ///< the frame's pose (with `poses`)
@@ -63,6 +68,21 @@ class SequenceRunner {
 
  private:
   const io::TimedPose* poseOf(const Frame& f) const;
+  /// A frame waiting for its callback, with everything the callback gets.
+  struct Held {
+    Frame frame;
+    core::DetectionResult detection;
+    const io::TimedPose* pose = nullptr;
+    std::optional<Eigen::Isometry3d> motion;
+    const io::LabelSweep* truth = nullptr;
+    std::size_t truth_index = 0;
+  };
+  /// Holds the frame just detected and lets hindsight revise its sensor's held frames.
+  void hold(Frame&& f, const FrameResult& r);
+  /// core::Hindsight::revise() over this sensor's held frames (`last`: the recording ended).
+  void revise(const std::string& sensor_label, bool last);
+  /// Calls back the frames held long enough (all of them when `all`), oldest first.
+  void release(const std::function<void(const FrameResult&)>& on_frame, bool all);
 
   FrameSource& source_;
   SequenceOptions opts_;
@@ -71,6 +91,8 @@ class SequenceRunner {
   std::optional<GroundTruth> truth_;
   std::map<std::string, const io::TimedPose*> last_pose_;  ///< per sensor label
   std::string first_label_;
+  core::Hindsight hindsight_;
+  std::deque<Held> held_;
 };
 
 }  // namespace dynobj::mrptio

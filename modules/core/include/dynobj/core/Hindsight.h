@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Beyond the paper, for offline runs (a recording in, labels or a map out): the detector decides
+// online, so an object is flagged only once its track has a window of observations (about 0.5 s)
+// and, at the start of a recording, never in its first sweeps. An offline run can hold each
+// frame's result for `lag` seconds before writing it; once a track has been dynamic for
+// `min_dynamic` seconds, its clusters in the held frames before that are flagged too (grown as in
+// Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to its
+// current position at least `min_speed` fast and its cluster was not much larger than the object
+// (a walker merged with a bench). lag = 0 is the paper's online behaviour. See
+// docs/algorithm.md §9.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/Params.h"
+#include "dynobj/core/RegionGrower.h"
+
+namespace dynobj::core {
+
+struct DetectionResult;
+
+struct HindsightParams : public StageParams {
+  double lag = 1.0;          ///< [s] how long an offline run holds a frame; 0 = online (the paper)
+  double min_speed = 0.5;    ///< [m/s] average speed from an earlier sweep to the confirming one
+  double min_dynamic = 0.3;  ///< [s] a track dynamic this long is trusted (one sweep at least)
+  double max_growth = 0.5;   ///< [m] an earlier cluster whose horizontal extent (box diagonal)
+                             ///< exceeds 1.5 x the object's by more had merged: stop
+
+  void visit(ParamVisitor& v) override;
+  void validate() const override;
+};
+
+class Hindsight {
+ public:
+  /// One held frame of one sensor and its result, which revise() may change.
+  struct Held {
+    const LidarFrame* frame = nullptr;
+    DetectionResult* result = nullptr;
+  };
+
+  explicit Hindsight(const HindsightParams& p = {}, const RegionGrowingParams& growing = {});
+
+  /// `held`: one sensor's held frames, oldest first, the last one just detected. Flags in the
+  /// earlier frames the clusters of the tracks whose dynamic run reaches min_dynamic in the last
+  /// (see above), or, when `last` (the recording ends there), of every run still shorter; adds
+  /// the time taken to the last result's timings. Returns the pixels added.
+  long revise(const std::vector<Held>& held, bool last = false);
+
+  /// Frames a run holds for a sensor at `frequency` [Hz] (0 when lag = 0).
+  int heldFrames(double frequency) const;
+  const HindsightParams& params() const { return p_; }
+
+ private:
+  HindsightParams p_;
+  RegionGrower grower_;
+  cv::Mat_<int> owner_;
+};
+
+}  // namespace dynobj::core

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dynobj/core/Hindsight.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "dynobj/core/Config.h"
+#include "dynobj/core/DynamicObjectDetector.h"
+
+namespace dynobj::core {
+namespace {
+
+TrackedObject* findTrack(std::vector<TrackedObject>& objects, int id) {
+  for (TrackedObject& o : objects)
+    if (o.id == id) return &o;
+  return nullptr;
+}
+
+/// One object's clusters from viewpoints up to `lag` apart differ in extent by up to this factor
+/// (real HDL-64 city-22: an oncoming car 5.35 m now, 6.11 m 0.3 s before; VLP-16 `parking`: a
+/// car 5.27 m now, 7.40 m 0.5 s before; a walker merged with a bench: 0.5 m now, 1.8 m then).
+constexpr double kViewSpread = 1.5;
+
+/// Horizontal extent of an object's box [m].
+double extent(const TrackedObject& o) {
+  return (o.box_max - o.box_min).head<2>().norm();
+}
+
+/// Seconds from frame a to frame b (timestamps, else the frame count at the sensor's rate).
+double secondsBetween(const Hindsight::Held& a, const Hindsight::Held& b, std::size_t frames) {
+  const std::int64_t ta = a.result->timestamp_ns, tb = b.result->timestamp_ns;
+  if (ta > 0 && tb > ta) return 1e-9 * static_cast<double>(tb - ta);
+  return static_cast<double>(frames) / b.frame->sensor.frequency;
+}
+
+}  // namespace
+
+void HindsightParams::visit(ParamVisitor& v) {
+  v.value("lag", lag);
+  v.value("min_speed", min_speed);
+  v.value("min_dynamic", min_dynamic);
+  v.value("max_growth", max_growth);
+}
+
+void HindsightParams::validate() const {
+  requireInRange("lag", lag, 0, 60);
+  requireInRange("min_speed", min_speed, 0, 100);
+  requireInRange("min_dynamic", min_dynamic, 0, 60);
+  requirePositive("max_growth", max_growth);
+}
+
+Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing)
+    : p_(p), grower_(growing) {
+  p_.validate();
+}
+
+int Hindsight::heldFrames(double frequency) const {
+  return static_cast<int>(std::ceil(p_.lag * frequency - 1e-9));
+}
+
+long Hindsight::revise(const std::vector<Held>& held, bool last) {
+  if (held.size() < 2) return 0;
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t k = held.size() - 1;
+  DetectionResult& now = *held[k].result;
+  long added = 0;
+  // The newest frame's dynamic run reaches min_dynamic in this many sweeps (one at least).
+  const int trusted = std::max(
+      1, static_cast<int>(std::ceil(p_.min_dynamic * held[k].frame->sensor.frequency - 1e-9)));
+  for (const TrackedObject& o : now.objects) {
+    if (!o.dynamic) continue;
+    // T_{j<-k}: the current frame's coordinates seen from the earlier frame j.
+    Eigen::Isometry3d T_jk = Eigen::Isometry3d::Identity();
+    int run = 1;  // sweeps the track has been seen dynamic in, up to this one
+    bool revising = false;
+    for (std::size_t j = k; j-- > 0;) {
+      T_jk = held[j + 1].result->ego_motion.motion * T_jk;
+      DetectionResult& r = *held[j].result;
+      TrackedObject* earlier = findTrack(r.objects, o.id);
+      if (!earlier) continue;  // not seen then (coasting)
+      if (earlier->dynamic) {
+        // Still in the run; or, revising, an earlier run reached: it was revised then.
+        if (revising || ++run > trusted) break;  // a longer run was trusted before
+        continue;
+      }
+      // The sweep before the run: revised once, when the run becomes trusted, or at the end of
+      // the recording, where nothing will tell a short run from a flicker any more.
+      if (!revising && run != trusted && !(last && run < trusted)) break;
+      revising = true;
+      const double way = (T_jk * o.centroid - earlier->centroid).head<2>().norm();
+      if (way < p_.min_speed * secondsBetween(held[j], held[k], k - j)) break;  // not moving yet
+      if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;    // merged then
+      const LidarFrame& f = *held[j].frame;
+      owner_.create(f.range.size());
+      owner_.setTo(-1);
+      const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_)[0];
+      for (int px : earlier->cluster) r.seeds(px / f.cols(), px % f.cols()) = 255;
+      earlier->dynamic = true;
+      earlier->points = grown;
+      added += grown;
+    }
+  }
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  now.timings.hindsight += ms;
+  now.timings.total += ms;
+  return added;
+}
+
+}  // namespace dynobj::core

@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Hindsight: a track that has been dynamic for min_dynamic in the newest held frame flags its
+// earlier clusters, grown over the object, back while the object was moving (seen through the
+// ego-motion) and its cluster was not a merge, and no further.
+#include <dynobj/core/Config.h>
+#include <dynobj/core/DynamicObjectDetector.h>
+#include <dynobj/core/GroundSegmenter.h>
+#include <dynobj/core/Hindsight.h>
+#include <gtest/gtest.h>
+
+#include "SyntheticScene.h"
+
+using namespace dynobj::core;
+using dynobj::test::Post;
+using dynobj::test::Scene;
+
+namespace {
+
+constexpr int kTrack = 7;
+
+/// Pixels whose point lies on the post at (x, y) above the floor.
+std::vector<int> postPixels(const LidarFrame& f, double x, double y, double radius) {
+  std::vector<int> px;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      const cv::Vec3f& p = f.xyz(r, c);
+      if (f.isValid(r, c) && std::abs(std::hypot(p[0] - x, p[1] - y) - radius) < 1e-3 &&
+          p[2] > -1.0f + 0.04f)
+        px.push_back(r * f.cols() + c);
+    }
+  return px;
+}
+
+/// A sequence of frames 0.1 s apart seeing one post (sensor frame positions `at`), each with the
+/// result the detector would give: the post tracked as kTrack, its cluster = the post's upper
+/// pixels only (features), its box the post's, dynamic (all its pixels flagged) in the last
+/// `dynamic` frames; `motion`: each frame's T_{prev<-cur}.
+struct Sequence {
+  std::vector<LidarFrame> frames;
+  std::vector<DetectionResult> results;
+  std::vector<std::vector<int>> post;  ///< every post pixel per frame
+
+  Sequence(const std::vector<Eigen::Vector2d>& at, const Eigen::Isometry3d& motion,
+           std::size_t dynamic = 3) {
+    const SensorModel s = dynobj::test::smallSensor();
+    for (std::size_t j = 0; j < at.size(); j++) {
+      Scene scene;
+      scene.posts.push_back({at[j].x(), at[j].y(), 0.3, 1.8});
+      frames.push_back(dynobj::test::render(scene, s, true, 1000000000LL + 100000000LL * j));
+      const LidarFrame& f = frames.back();
+      DetectionResult r;
+      r.timestamp_ns = f.timestamp_ns;
+      r.frame_index = static_cast<long>(j);
+      GroundSegmenter().segment(f, r.ground);
+      r.dynamic = cv::Mat_<std::uint8_t>(f.range.size(), std::uint8_t{0});
+      r.seeds = r.dynamic.clone();
+      r.ego_motion.motion = j == 0 ? Eigen::Isometry3d::Identity() : motion;
+      post.push_back(postPixels(f, at[j].x(), at[j].y(), 0.3));
+      TrackedObject o;
+      o.id = kTrack;
+      o.centroid = Eigen::Vector3d(at[j].x(), at[j].y(), 0);
+      o.box_min = o.centroid - Eigen::Vector3d(0.3, 0.3, 1);
+      o.box_max = o.centroid + Eigen::Vector3d(0.3, 0.3, 0.8);
+      for (int px : post.back())
+        if (f.xyz(px / f.cols(), px % f.cols())[2] > 0.3f) o.cluster.push_back(px);
+      o.points = static_cast<int>(o.cluster.size());
+      results.push_back(r);
+      results.back().objects.push_back(o);
+    }
+    for (std::size_t j = at.size() - dynamic; j < at.size(); j++) {
+      results[j].objects[0].dynamic = true;
+      for (int px : post[j]) results[j].dynamic(px / frames[j].cols(), px % frames[j].cols()) = 255;
+    }
+  }
+  std::vector<Hindsight::Held> held() {
+    std::vector<Hindsight::Held> h;
+    for (std::size_t j = 0; j < frames.size(); j++) h.push_back({&frames[j], &results[j]});
+    return h;
+  }
+  /// The frame's flagged pixels, as indices.
+  std::vector<int> flagged(std::size_t j) const {
+    std::vector<int> px;
+    for (int i = 0; i < static_cast<int>(results[j].dynamic.total()); i++)
+      if (results[j].dynamic(i / results[j].dynamic.cols, i % results[j].dynamic.cols))
+        px.push_back(i);
+    return px;
+  }
+};
+
+Eigen::Isometry3d forward(double metres) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation().x() = metres;
+  return T;
+}
+
+}  // namespace
+
+/// Frames at 1.5 m/s across the sensor's view (0.15 m per 0.1 s), `n` of them.
+std::vector<Eigen::Vector2d> walking(int n) {
+  std::vector<Eigen::Vector2d> at;
+  for (int j = 0; j < n; j++) at.emplace_back(4, -0.15 * (n - 1 - j));
+  return at;
+}
+
+TEST(Hindsight, FlagsTheWholeObjectInEveryEarlierFrameItMovedIn) {
+  // Dynamic in the last 3 frames (0.3 s = min_dynamic): frames 0-3 are revised.
+  Sequence seq(walking(7), forward(0));
+  ASSERT_GT(seq.post[0].size(), seq.results[0].objects[0].cluster.size());
+  const long added = Hindsight().revise(seq.held());
+  long expected = 0;
+  for (std::size_t j = 0; j < 4; j++) {
+    EXPECT_EQ(seq.flagged(j), seq.post[j]) << "frame " << j;  // grown from the upper part
+    EXPECT_TRUE(seq.results[j].objects[0].dynamic);
+    EXPECT_EQ(seq.results[j].objects[0].points, static_cast<int>(seq.post[j].size()));
+    expected += static_cast<long>(seq.post[j].size());
+  }
+  EXPECT_EQ(added, expected);
+  EXPECT_GE(seq.results.back().timings.hindsight, 0.0);
+}
+
+TEST(Hindsight, TrustsATrackOnlyOnceItHasBeenDynamicForMinDynamic) {
+  Sequence young(walking(7), forward(0), 2);  // 0.2 s: not yet
+  EXPECT_EQ(Hindsight().revise(young.held()), 0);
+  for (std::size_t j = 0; j < 5; j++) EXPECT_TRUE(young.flagged(j).empty()) << "frame " << j;
+  // ... unless the recording ends there: nothing can tell it from a flicker any more.
+  Sequence ending(walking(7), forward(0), 2);
+  EXPECT_GT(Hindsight().revise(ending.held(), true), 0);
+  for (std::size_t j = 0; j < 5; j++) EXPECT_EQ(ending.flagged(j), ending.post[j]) << "frame " << j;
+  HindsightParams quick;
+  quick.min_dynamic = 0.2;
+  Hindsight(quick).revise(young.held());
+  for (std::size_t j = 0; j < 5; j++) EXPECT_EQ(young.flagged(j), young.post[j]) << "frame " << j;
+
+  // Dynamic for 4 frames: it was trusted a frame ago, when the earlier frames were revised.
+  Sequence older(walking(7), forward(0), 4);
+  EXPECT_EQ(Hindsight().revise(older.held()), 0);
+  EXPECT_TRUE(older.flagged(2).empty());
+}
+
+TEST(Hindsight, StopsWhereTheObjectWasNotYetMovingOrWasFlaggedAlready) {
+  // Standing until frame 2, then 1.5 m/s, dynamic in the last frame; min_dynamic 0: one frame
+  // is trusted. Average speeds from frames 3, 2, 1, 0 to frame 4: 1.5, 1.5, 1.0 and 0.75 m/s;
+  // with min_speed 0.9 frames 3 to 1 are flagged back, frame 0 not (frames 1 and 2, standing,
+  // are the price of judging on the average: at most `lag` seconds).
+  Sequence seq({{4, -0.3}, {4, -0.3}, {4, -0.3}, {4, -0.15}, {4, 0}}, forward(0), 1);
+  HindsightParams p;
+  p.min_speed = 0.9;
+  p.min_dynamic = 0;
+  Hindsight(p).revise(seq.held());
+  EXPECT_TRUE(seq.flagged(0).empty());
+  for (std::size_t j = 1; j < 4; j++) EXPECT_EQ(seq.flagged(j), seq.post[j]) << "frame " << j;
+
+  // Dynamic in frame 2, then not in 3, then again in 4-6: only the gap (frame 3) is revised.
+  Sequence again(walking(7), forward(0), 3);
+  again.results[2].objects[0].dynamic = true;
+  again.results[2].dynamic.setTo(0);  // frame 2's pixels are the caller's: none, to see
+  Hindsight().revise(again.held());
+  for (std::size_t j = 0; j < 3; j++) EXPECT_TRUE(again.flagged(j).empty()) << "frame " << j;
+  EXPECT_EQ(again.flagged(3), again.post[3]);
+}
+
+TEST(Hindsight, StopsAtAClusterThatHadMergedWithSomethingElse) {
+  // In frame 2 the walker's cluster took in a bench: its box 1.5 m longer, a 2.18 m diagonal
+  // against the object's 0.85 m (allowed: 1.5 x 0.85 + 0.5 = 1.77 m).
+  Sequence seq(walking(7), forward(0));
+  seq.results[2].objects[0].box_max.x() += 1.5;
+  Hindsight().revise(seq.held());
+  EXPECT_EQ(seq.flagged(3), seq.post[3]);
+  for (std::size_t j = 0; j < 3; j++) EXPECT_TRUE(seq.flagged(j).empty()) << "frame " << j;
+  HindsightParams lenient;
+  lenient.max_growth = 1.0;
+  Sequence seq2(walking(7), forward(0));
+  seq2.results[2].objects[0].box_max.x() += 1.5;
+  Hindsight(lenient).revise(seq2.held());
+  EXPECT_EQ(seq2.flagged(0), seq2.post[0]);
+}
+
+TEST(Hindsight, JudgesMotionThroughTheEgoMotion) {
+  // The sensor drives +0.15 m per frame along x. A post standing in the world comes 0.15 m nearer
+  // each frame in the sensor frame: not moving, nothing flagged back.
+  Sequence still({{4.9, 0}, {4.75, 0}, {4.6, 0}, {4.45, 0}, {4.3, 0}, {4.15, 0}, {4, 0}},
+                 forward(0.15));
+  Hindsight().revise(still.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_TRUE(still.flagged(j).empty()) << "frame " << j;
+  // A car driving ahead at the sensor's speed stays put in the sensor frame: moving, flagged.
+  Sequence ahead(std::vector<Eigen::Vector2d>(7, Eigen::Vector2d(4, 0)), forward(0.15));
+  Hindsight().revise(ahead.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(ahead.flagged(j), ahead.post[j]) << "frame " << j;
+}
+
+TEST(Hindsight, HeldFramesFollowTheLagAndTheRate) {
+  EXPECT_EQ(Hindsight().heldFrames(10), 10);
+  EXPECT_EQ(Hindsight().heldFrames(20), 20);
+  HindsightParams online;
+  online.lag = 0;
+  EXPECT_EQ(Hindsight(online).heldFrames(10), 0);
+  for (const char* key : {"min_speed", "min_dynamic", "max_growth", "lag"}) {
+    HindsightParams bad;
+    bad.min_speed = std::string(key) == "min_speed" ? -1 : bad.min_speed;
+    bad.min_dynamic = std::string(key) == "min_dynamic" ? -1 : bad.min_dynamic;
+    bad.max_growth = std::string(key) == "max_growth" ? 0 : bad.max_growth;
+    bad.lag = std::string(key) == "lag" ? -1 : bad.lag;
+    try {
+      Hindsight{bad};
+      ADD_FAILURE() << key << " accepted";
+    } catch (const ParameterError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
