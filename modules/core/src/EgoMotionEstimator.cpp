@@ -34,12 +34,9 @@ Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
 }
 
 /// Hamming distance of two 32-byte ORB descriptors, inline: cv::hal::normHamming is an
-/// out-of-line dispatched call, slow on the ~90,000 short pairs a frame compares. GCC builds a
-/// POPCNT clone (every x86-64 CPU since 2008) and picks it at load time.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("popcnt", "default")))
-#endif
-int hamming256(const std::uint8_t* a, const std::uint8_t* b) {
+/// out-of-line dispatched call, slow on the ~90,000 short pairs a frame compares. Inlined into
+/// bestTwo(), of which GCC builds a POPCNT clone (every x86-64 CPU since 2008) picked at load time.
+inline int hamming256(const std::uint8_t* a, const std::uint8_t* b) {
   int d = 0;
   for (int k = 0; k < 32; k += 8) {
     std::uint64_t x, y;
@@ -48,6 +45,27 @@ int hamming256(const std::uint8_t* a, const std::uint8_t* b) {
     d += __builtin_popcountll(x ^ y);
   }
   return d;
+}
+
+/// The nearest and second-nearest of the candidate rows `js` of `prev` to descriptor `a`
+/// (Hamming distance): best = its row (-1 when none), d1 <= d2 their distances.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("popcnt", "default")))
+#endif
+void bestTwo(const std::uint8_t* a, const cv::Mat& prev, const std::vector<int>& js, int& best,
+             int& d1, int& d2) {
+  const int bytes = prev.cols;
+  for (int j : js) {
+    const std::uint8_t* b = prev.ptr<std::uint8_t>(j);
+    const int d = bytes == 32 ? hamming256(a, b) : cv::hal::normHamming(a, b, bytes);
+    if (d < d1) {
+      d2 = d1;
+      d1 = d;
+      best = j;
+    } else if (d < d2) {
+      d2 = d;
+    }
+  }
 }
 
 }  // namespace
@@ -183,25 +201,14 @@ void EgoMotionEstimator::match(int cols, int window, std::vector<std::pair<int, 
   for (std::size_t j = 0; j < prev_.pixels.size(); j++)
     buckets_[static_cast<std::size_t>((prev_.pixels[j] % cols) / kBucket)].push_back(
         static_cast<int>(j));
-  const int bytes = cur_.descriptors.cols;
   for (int i = 0; i < cur_.descriptors.rows; i++) {
     const std::uint8_t* a = cur_.descriptors.ptr<std::uint8_t>(i);
     const int b0 = (cur_.pixels[static_cast<std::size_t>(i)] % cols) / kBucket;
     int best = -1, d1 = 1 << 30, d2 = 1 << 30;
     const int span = std::min(nb, 2 * reach + 1);  // distinct buckets, even when they wrap
-    for (int k = 0; k < span; k++) {
-      for (int j : buckets_[static_cast<std::size_t>(((b0 - reach + k) % nb + nb) % nb)]) {
-        const std::uint8_t* b = prev_.descriptors.ptr<std::uint8_t>(j);
-        const int d = bytes == 32 ? hamming256(a, b) : cv::hal::normHamming(a, b, bytes);
-        if (d < d1) {
-          d2 = d1;
-          d1 = d;
-          best = j;
-        } else if (d < d2) {
-          d2 = d;
-        }
-      }
-    }
+    for (int k = 0; k < span; k++)
+      bestTwo(a, prev_.descriptors,
+              buckets_[static_cast<std::size_t>(((b0 - reach + k) % nb + nb) % nb)], best, d1, d2);
     if (best >= 0 && d2 < (1 << 30) && d1 <= p_.ratio * d2) out.emplace_back(i, best);
   }
 }
@@ -277,20 +284,22 @@ void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, Eg
 void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
   if (!have_prev_ || dynamic.empty() || prev_.pixels.empty()) return;
   const std::uint8_t* d = dynamic.ptr<std::uint8_t>(0);
-  Features kept;
-  std::vector<int> rows;
+  cv::Mat& desc = prev_.descriptors;  // its own buffer (detect() allocates a new one per frame)
+  const std::size_t row_bytes = desc.cols * desc.elemSize();
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < prev_.pixels.size(); i++) {
     if (d[prev_.pixels[i]]) continue;
-    kept.points.push_back(prev_.points[i]);
-    kept.pixels.push_back(prev_.pixels[i]);
-    rows.push_back(static_cast<int>(i));
+    if (kept != i) {  // compact in place, keeping the order
+      prev_.points[kept] = prev_.points[i];
+      prev_.pixels[kept] = prev_.pixels[i];
+      std::memcpy(desc.ptr(static_cast<int>(kept)), desc.ptr(static_cast<int>(i)), row_bytes);
+    }
+    kept++;
   }
-  if (rows.size() == prev_.pixels.size()) return;
-  kept.descriptors.create(static_cast<int>(rows.size()), prev_.descriptors.cols,
-                          prev_.descriptors.type());
-  for (std::size_t k = 0; k < rows.size(); k++)
-    prev_.descriptors.row(rows[k]).copyTo(kept.descriptors.row(static_cast<int>(k)));
-  prev_ = std::move(kept);
+  if (kept == prev_.pixels.size()) return;
+  prev_.points.resize(kept);
+  prev_.pixels.resize(kept);
+  desc = desc.rowRange(0, static_cast<int>(kept));
 }
 
 }  // namespace dynobj::core

@@ -149,13 +149,16 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
   const int n_valid = cv::countNonZero(f.valid);
   const int step = std::max(1, n_valid / p_.points);
   pts.reserve(static_cast<std::size_t>(n_valid / step + 1));
-  int k = 0;
-  for (int r = 0; r < f.rows(); r++)
-    for (int c = 0; c < f.cols(); c++)
-      if (f.isValid(r, c) && k++ % step == 0) {
-        const cv::Vec3f& p = f.xyz(r, c);
-        pts.emplace_back(p[0], p[1], p[2]);
-      }
+  int skip = 0;  // valid pixels to pass before the next sample (every step-th one is taken)
+  for (int r = 0; r < f.rows(); r++) {
+    const std::uint8_t* valid = f.valid.ptr<std::uint8_t>(r);
+    const cv::Vec3f* xyz = f.xyz.ptr<cv::Vec3f>(r);
+    for (int c = 0; c < f.cols(); c++) {
+      if (!valid[c] || skip-- > 0) continue;
+      pts.emplace_back(xyz[c][0], xyz[c][1], xyz[c][2]);
+      skip = step - 1;
+    }
+  }
 
   Eigen::Isometry3d T = init;
   const int iters = p_.iterations;

@@ -2,6 +2,8 @@
 #include <dynobj/core/SphericalProjection.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -230,4 +232,88 @@ TEST(SphericalProjection, MismatchedCloudVectorsAreRejected) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("intensity"), std::string::npos) << e.what();
   }
+}
+
+namespace {
+
+/// The reference rule pixelOf must reproduce: Eq. (1) through asin and atan2.
+bool exactPixel(const SphericalProjection& p, double x, double y, double z, int& row, int& col) {
+  const double r = std::sqrt(x * x + y * y + z * z);
+  row = p.rowOfElevation(std::asin(std::clamp(z / r, -1.0, 1.0)));
+  col = row < 0 ? -1 : p.columnOf(x, y);
+  return row >= 0;
+}
+
+/// Oracle: pixelOf against exactPixel on random directions and on directions placed at small
+/// fractions of a degree from every row and column edge (where the fast path hands over).
+void expectSameAsExact(const SensorModel& s) {
+  const SphericalProjection p(s);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> az(-M_PI, M_PI), el(-M_PI / 2, M_PI / 2), u01(0, 1);
+  std::vector<std::array<double, 2>> dirs;  // (azimuth, elevation)
+  for (int i = 0; i < 200000; i++) dirs.push_back({az(rng), el(rng)});
+  const double col_w = 2 * M_PI / s.cols;
+  const double offsets[] = {0, 1e-12, -1e-12, 1e-9, -1e-9, 5e-6, -5e-6, 2e-5, -2e-5, 1e-4, -1e-4};
+  for (int c = 0; c <= s.cols; c++)
+    for (double o : offsets) dirs.push_back({-M_PI + c * col_w + o, el(rng) * 0.2});
+  std::vector<double> edges;
+  const auto e = s.rowElevations();
+  edges.push_back(s.fovUp());
+  for (std::size_t k = 1; k < e.size(); k++) edges.push_back(0.5 * (e[k - 1] + e[k]));
+  edges.push_back(s.fovUp() - s.fovSpan());
+  for (double edge : edges)
+    for (double o : offsets) dirs.push_back({az(rng), edge + o});
+  int mismatches = 0;
+  for (const auto& [a, b] : dirs) {
+    const double rr = 0.5 + 60 * u01(rng);
+    const double x = rr * std::cos(b) * std::cos(a), y = rr * std::cos(b) * std::sin(a),
+                 z = rr * std::sin(b);
+    int r1, c1, r2, c2;
+    const bool in1 = p.pixelOf(x, y, z, r1, c1), in2 = exactPixel(p, x, y, z, r2, c2);
+    if (in1 != in2 || (in1 && (r1 != r2 || c1 != c2))) {
+      if (mismatches++ < 5)
+        ADD_FAILURE() << s.model << ": az " << a << " el " << b << " fast (" << r1 << ", " << c1
+                      << ") exact (" << r2 << ", " << c2 << ")";
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << s.model << ": of " << dirs.size() << " directions";
+}
+
+}  // namespace
+
+TEST(SphericalProjection, PixelOfMatchesAsinAtan2OnEveryEdgeUniformSensors) {
+  for (int cols : {8, 512, 1024, 2048}) {
+    SensorModel s = tinySensor();
+    s.model = "uniform-" + std::to_string(cols);
+    s.rows = 64;
+    s.cols = cols;
+    s.elevation_top = 45 * kDeg;
+    s.elevation_bottom = -45 * kDeg;
+    expectSameAsExact(s);
+  }
+}
+
+TEST(SphericalProjection, PixelOfMatchesAsinAtan2OnEveryEdgeBeamTable) {
+  SensorModel s = tinySensor();
+  s.model = "table";
+  s.rows = 6;
+  s.cols = 2048;
+  s.beam_elevations = {10 * kDeg, 9 * kDeg, 2 * kDeg, 1.9 * kDeg, -20 * kDeg, -24.8 * kDeg};
+  expectSameAsExact(s);
+}
+
+TEST(SphericalProjection, PixelOfMatchesAsinAtan2OnADomeBeyondNinetyDegrees) {
+  SensorModel s = tinySensor();  // edges half a spacing beyond +-90 deg
+  s.model = "dome";
+  s.rows = 32;
+  s.cols = 1024;
+  s.elevation_top = 90 * kDeg;
+  s.elevation_bottom = -90 * kDeg;
+  expectSameAsExact(s);
+  const SphericalProjection p(s);
+  int r, c;
+  ASSERT_TRUE(p.pixelOf(0.001, 0, 10, r, c));  // straight up: the top row
+  EXPECT_EQ(r, 0);
+  ASSERT_TRUE(p.pixelOf(0.001, 0, -10, r, c));
+  EXPECT_EQ(r, 31);
 }

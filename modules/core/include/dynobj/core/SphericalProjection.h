@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,10 @@ class SphericalProjection {
   /// Eq. (1), v: row of an elevation [rad], or -1 outside the vertical FOV. Sensors with a beam
   /// table (non-uniform spacing) use the nearest beam within half the gap to its neighbours.
   int rowOfElevation(double elevation) const;
-  /// Both at once; false (row = col = -1) when the point is not in the image.
+  /// Both at once; false (row = col = -1) when the point is not in the image. The same pixel as
+  /// rowOfElevation(asin(z / |p|)) and columnOf(x, y), without their trigonometry: the row is
+  /// found among the sines of the row edges and the column from a polynomial arctangent; a point
+  /// within the polynomial's error of an edge takes the exact path (docs/performance.md).
   bool pixelOf(double x, double y, double z, int& row, int& col) const;
 
   /// Unordered cloud -> frame via Eq. (1). `frame` is reset to the sensor's size.
@@ -51,10 +55,13 @@ class SphericalProjection {
 
  private:
   SensorModel sensor_;
-  double fov_up_ = 0;                    ///< beta_up [rad]
-  double fov_span_ = 0;                  ///< beta_fov [rad]
-  std::vector<double> row_upper_edges_;  ///< non-uniform sensors: upper edge of each row
-  double lower_edge_ = 0;                ///< non-uniform sensors: lower edge of the last row
+  double fov_up_ = 0;                     ///< beta_up [rad]
+  double fov_span_ = 0;                   ///< beta_fov [rad]
+  std::vector<double> row_upper_edges_;   ///< non-uniform sensors: upper edge of each row
+  double lower_edge_ = 0;                 ///< non-uniform sensors: lower edge of the last row
+  std::vector<double> sin_edges_;         ///< sine of every row edge, top to bottom (rows + 1)
+  std::vector<std::uint16_t> sine_bins_;  ///< per bin of sines: how many edges lie above it
+  double column_margin_ = 0;              ///< pixelOf: columns this near an edge take atan2
 };
 
 }  // namespace dynobj::core
