@@ -41,6 +41,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("min_speed", min_speed);
   v.value("min_dynamic", min_dynamic);
   v.value("max_growth", max_growth);
+  v.value("settle_distance", settle_distance);
 }
 
 void HindsightParams::validate() const {
@@ -48,6 +49,7 @@ void HindsightParams::validate() const {
   requireInRange("min_speed", min_speed, 0, 100);
   requireInRange("min_dynamic", min_dynamic, 0, 60);
   requirePositive("max_growth", max_growth);
+  requireInRange("settle_distance", settle_distance, 0, 1000);
 }
 
 Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing)
@@ -106,6 +108,55 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
   now.timings.hindsight += ms;
   now.timings.total += ms;
   return added;
+}
+
+int Hindsight::settle(const std::vector<Held>& held) {
+  if (p_.settle_distance <= 0 || held.size() < 2) return 0;
+  const auto start = std::chrono::steady_clock::now();
+  DetectionResult& first = *held[0].result;
+  int unflagged = 0;
+  for (TrackedObject& o : first.objects) {
+    if (!o.dynamic) continue;
+    // How far the track gets from here in the later held frames that see it, its positions
+    // carried into the first frame (T_{0<-j}); no verdict across a failed ego-motion.
+    Eigen::Isometry3d T_0j = Eigen::Isometry3d::Identity();
+    double way = -1, span = 0;
+    for (std::size_t j = 1; j < held.size(); j++) {
+      const DetectionResult& r = *held[j].result;
+      if (!r.ego_motion.ok) break;
+      T_0j = T_0j * r.ego_motion.motion;
+      const auto it = std::find_if(r.objects.begin(), r.objects.end(),
+                                   [&](const TrackedObject& e) { return e.id == o.id; });
+      if (it == r.objects.end()) continue;
+      way = std::max(way, (T_0j * it->centroid - o.centroid).head<2>().norm());
+      span = secondsBetween(held[0], held[j], j);
+    }
+    if (way < 0 || span < 0.5 * p_.lag - 1e-9 || way >= p_.settle_distance) continue;
+    o.dynamic = false;
+    unflagged++;
+  }
+  if (unflagged > 0) {  // the mask again, from the objects still dynamic
+    const LidarFrame& f = *held[0].frame;
+    std::vector<std::vector<int>> seeds;
+    for (const TrackedObject& o : first.objects)
+      if (o.dynamic) seeds.push_back(o.cluster);
+    first.dynamic.setTo(0);
+    first.seeds.setTo(0);
+    owner_.create(f.range.size());
+    owner_.setTo(-1);
+    const std::vector<int> grown = grower_.grow(f, first.ground, seeds, first.dynamic, owner_);
+    std::size_t s = 0;
+    for (TrackedObject& o : first.objects) {
+      if (!o.dynamic) continue;
+      o.points = grown[s++];
+      for (int px : o.cluster) first.seeds(px / f.cols(), px % f.cols()) = 255;
+    }
+  }
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  first.timings.hindsight += ms;
+  first.timings.total += ms;
+  return unflagged;
 }
 
 }  // namespace dynobj::core

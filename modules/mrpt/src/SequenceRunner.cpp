@@ -84,11 +84,19 @@ void SequenceRunner::hold(Frame&& f, const FrameResult& r) {
   revise(h.frame.sensor_label, false);
 }
 
-void SequenceRunner::revise(const std::string& sensor_label, bool last) {
+std::vector<core::Hindsight::Held> SequenceRunner::heldOf(const std::string& sensor_label) {
   std::vector<core::Hindsight::Held> same_sensor;
   for (Held& e : held_)
     if (e.frame.sensor_label == sensor_label) same_sensor.push_back({&e.frame.frame, &e.detection});
-  hindsight_.revise(same_sensor, last);
+  return same_sensor;
+}
+
+void SequenceRunner::revise(const std::string& sensor_label, bool last) {
+  hindsight_.revise(heldOf(sensor_label), last);
+}
+
+void SequenceRunner::settle(const std::string& sensor_label) {
+  hindsight_.settle(heldOf(sensor_label));
 }
 
 void SequenceRunner::release(const std::function<void(const FrameResult&)>& on_frame, bool all) {
@@ -100,6 +108,7 @@ void SequenceRunner::release(const std::function<void(const FrameResult&)>& on_f
       });
       if (same <= hindsight_.heldFrames(h.frame.frame.sensor.frequency)) return;
     }
+    settle(h.frame.sensor_label);
     FrameResult r(h.frame);
     r.detection = &h.detection;
     r.pose = h.pose;

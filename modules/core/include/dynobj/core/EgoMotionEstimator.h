@@ -19,7 +19,7 @@
 namespace dynobj::core {
 
 struct EgoMotionParams : public StageParams {
-  int features = 800;         ///< ORB nfeatures
+  int features = 400;         ///< ORB nfeatures
   double scale_factor = 1.2;  ///< ORB scaleFactor
   int levels = 1;             ///< ORB nlevels (the 32 px padding gives level 0 room)
   int fast_threshold = 10;    ///< ORB fastThreshold (10 suits sparse indoor scenes)

@@ -6,7 +6,8 @@
 // `min_dynamic` seconds, its clusters in the held frames before that are flagged too (grown as in
 // Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to its
 // current position at least `min_speed` fast and its cluster was not much larger than the object
-// (a walker merged with a bench). lag = 0 is the paper's online behaviour. See
+// (a walker merged with a bench); before a frame is written, an object whose track then got
+// nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour. See
 // docs/algorithm.md §9.
 #pragma once
 
@@ -27,6 +28,9 @@ struct HindsightParams : public StageParams {
   double min_dynamic = 0.3;  ///< [s] a track dynamic this long is trusted (one sweep at least)
   double max_growth = 0.5;   ///< [m] an earlier cluster whose horizontal extent (box diagonal)
                              ///< exceeds 1.5 x the object's by more had merged: stop
+  double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
+                               ///< (half of it at least), never gets this far from where it is
+                               ///< is unflagged before its frame is written; 0 = off
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -47,6 +51,13 @@ class Hindsight {
   /// (see above), or, when `last` (the recording ends there), of every run still shorter; adds
   /// the time taken to the last result's timings. Returns the pixels added.
   long revise(const std::vector<Held>& held, bool last = false);
+
+  /// `held`: one sensor's held frames, oldest first; the oldest is about to be written. Unflags
+  /// there the dynamic objects whose tracks, seen from that frame, get no farther than
+  /// settle_distance from where they are in any later held frame, when the last of those is at
+  /// least lag / 2 later: a mover must get somewhere (swaying foliage, a walker who stopped).
+  /// Returns the objects unflagged.
+  int settle(const std::vector<Held>& held);
 
   /// Frames a run holds for a sensor at `frequency` [Hz] (0 when lag = 0).
   int heldFrames(double frequency) const;

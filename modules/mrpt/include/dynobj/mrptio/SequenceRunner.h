@@ -81,6 +81,10 @@ class SequenceRunner {
   void hold(Frame&& f, const FrameResult& r);
   /// core::Hindsight::revise() over this sensor's held frames (`last`: the recording ended).
   void revise(const std::string& sensor_label, bool last);
+  /// core::Hindsight::settle() on this sensor's oldest held frame, before it is released.
+  void settle(const std::string& sensor_label);
+  /// This sensor's held frames, oldest first.
+  std::vector<core::Hindsight::Held> heldOf(const std::string& sensor_label);
   /// Calls back the frames held long enough (all of them when `all`), oldest first.
   void release(const std::function<void(const FrameResult&)>& on_frame, bool all);
 
