@@ -11,10 +11,11 @@
 namespace dynobj::core {
 namespace {
 
-TrackedObject* findTrack(std::vector<TrackedObject>& objects, int id) {
-  for (TrackedObject& o : objects)
+template <class Objects>  // std::vector<TrackedObject>, const or not
+auto* findTrack(Objects& objects, int id) {
+  for (auto& o : objects)
     if (o.id == id) return &o;
-  return nullptr;
+  return static_cast<decltype(&objects[0])>(nullptr);
 }
 
 /// One object's clusters from viewpoints up to `lag` apart differ in extent by up to this factor
@@ -125,10 +126,9 @@ int Hindsight::settle(const std::vector<Held>& held) {
       const DetectionResult& r = *held[j].result;
       if (!r.ego_motion.ok) break;
       T_0j = T_0j * r.ego_motion.motion;
-      const auto it = std::find_if(r.objects.begin(), r.objects.end(),
-                                   [&](const TrackedObject& e) { return e.id == o.id; });
-      if (it == r.objects.end()) continue;
-      way = std::max(way, (T_0j * it->centroid - o.centroid).head<2>().norm());
+      const TrackedObject* later = findTrack(r.objects, o.id);
+      if (!later) continue;
+      way = std::max(way, (T_0j * later->centroid - o.centroid).head<2>().norm());
       span = secondsBetween(held[0], held[j], j);
     }
     if (way < 0 || span < 0.5 * p_.lag - 1e-9 || way >= p_.settle_distance) continue;
