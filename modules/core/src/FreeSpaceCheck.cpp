@@ -17,6 +17,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("require_proof", require_proof);
   v.value("lookback", lookback);
   v.value("side_rays", side_rays);
+  v.value("side_rows", side_rows);
   v.value("min_solid_ratio", min_solid_ratio);
 }
 
@@ -27,6 +28,7 @@ void FreeSpaceParams::validate() const {
   requireInRange("min_evidence", min_evidence, 0, 1000000);
   requireInRange("lookback", lookback, 1, 1000);
   requireInRange("side_rays", side_rays, 0, 100);
+  requireInRange("side_rows", side_rows, 0, 100);
   requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
 }
 
@@ -78,6 +80,13 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 
 }  // namespace
 
+bool FreeSpaceCheck::sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q) const {
+  int r = -1, c = -1;
+  if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
+  const double range = q.norm();
+  return std::abs(seen(r, c) - range) <= p_.tolerance(range);
+}
+
 double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const {
   const double own = seen(r, c);
   if (own <= through) return own;  // it did not go through: its own ray decides
@@ -87,6 +96,12 @@ double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, doub
     const float n = seen(r, ((c + dc) % W + W) % W);
     if (n > 0) nearest = std::min<double>(nearest, n);
   }
+  for (int dr = 1; dr <= p_.side_rows; ++dr)
+    for (const int rr : {r - dr, r + dr}) {
+      if (rr < 0 || rr >= seen.rows) continue;
+      const float n = seen(rr, c);
+      if (n > 0) nearest = std::min<double>(nearest, n);
+    }
   return nearest;
 }
 
@@ -157,8 +172,26 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   };
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old);
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
-  // No verdict (hidden then): the space it left, seen now.
-  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range);
+  // No verdict (hidden then): the space it left, moved back by `shift`. Still occupied now
+  // refutes the motion. Seen through now proves it only where the old frame saw a surface there
+  // (the object itself): the space in front of a static object that only seems to recede, as it
+  // comes out from behind an occluder, is seen through too.
+  for (int px : cluster.pixels) {
+    const cv::Vec3f& p = frame.xyz(px / W, px % W);
+    const Eigen::Vector3d left = Eigen::Vector3d(p[0], p[1], p[2]) - *shift;
+    int r = -1, c = -1;
+    if (!proj_->pixelOf(left.x(), left.y(), left.z(), r, c)) {
+      e.unknown++;
+      continue;
+    }
+    const double expected = left.norm(), tol = p_.tolerance(expected);
+    FreeSpaceEvidence now;
+    tally(now, rayBeside(frame.range, r, c, expected + tol), expected, tol);
+    if (now.free > 0 && !sawSurface(*old, T * left)) now = {0, 0, 1};
+    e.free += now.free;
+    e.occupied += now.occupied;
+    e.unknown += now.unknown;
+  }
   return e;
 }
 

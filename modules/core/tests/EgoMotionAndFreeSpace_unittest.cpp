@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <dynobj/core/Config.h>
 #include <dynobj/core/EgoMotionEstimator.h>
 #include <dynobj/core/ForegroundExtractor.h>
 #include <dynobj/core/FreeSpaceCheck.h>
@@ -306,4 +307,58 @@ TEST(FreeSpaceCheck, AnOccludingEdgeThatShiftedByAColumnIsNotFreeSpace) {
   EXPECT_EQ(by_the_pole.free + by_the_pole.occupied, 0);
   EXPECT_EQ(by_the_pole.unknown, 4);
   EXPECT_EQ(evidence(0, 44).free, 4);
+}
+
+TEST(FreeSpaceCheck, ABeamThatPassedOverTheSurfaceBelowItIsNotFreeSpace) {
+  // A beam grazing a horizontal surface (a car's roof) meets it at a range that changes fast with
+  // its elevation. Before: the ray of row 2 in column 10 met the roof at 4 m, the other rays went
+  // on to a wall at 20 m. Now a point of that roof lies at 5 m on row 1's ray: row 1 passed over
+  // it before, row 2 below it did not. A point that arrived in column 30 has the wall around it.
+  const LidarFrame before = rayFrame([](int r, int c) { return c == 10 && r == 2 ? 4.0F : 20.0F; });
+  const LidarFrame now =
+      rayFrame([](int r, int c) { return (c == 10 || c == 30) && r == 1 ? 5.0F : 20.0F; });
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  chain.push(1, Eigen::Isometry3d::Identity(), true);
+  auto evidence = [&](int side_rows, int c) {
+    FreeSpaceParams p;
+    p.side_rows = side_rows;
+    FreeSpaceCheck check(p);
+    check.remember(0, before);
+    Cluster k;
+    k.pixels = {1 * now.cols() + c};
+    return check.evidence(now, 1, k, 0, chain);
+  };
+  EXPECT_EQ(evidence(0, 10).free, 1);  // its own row alone: "free"
+  const FreeSpaceEvidence roof = evidence(1, 10);
+  EXPECT_EQ(roof.free, 0);
+  EXPECT_EQ(roof.occupied, 0);
+  EXPECT_EQ(roof.unknown, 1);
+  EXPECT_EQ(evidence(1, 30).free, 1);
+  FreeSpaceParams bad;
+  bad.side_rows = -1;
+  EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(FreeSpaceCheck, AnObjectComingOutFromBehindAnOccluderHasNotLeftAnySpace) {
+  // Before, a post at 3 m hid a post at 6 m; now the near one has gone and the far one, unmoved,
+  // is in view. Its track may seem to recede (more of it shows): the space in front of it is seen
+  // through now, but the old frame never saw the post there, so nothing proves it moved. A post
+  // that really moved away from 5 m to 6 m was seen where it was.
+  Scene before, after;
+  before.posts = {{3, 0, 0.3, 1.8}, {6, 0, 0.3, 1.8}};
+  after.posts = {{6, 0, 0.3, 1.8}};
+  const TwoFrames t(before, after);
+  const Cluster c = t.clusterAt(6, 0);
+  ASSERT_GT(c.pixels.size(), 5u);
+  const auto came_out = t.check.evidence(t.f1, 1, c, 0, t.chain, Eigen::Vector3d(1, 0, 0));
+  EXPECT_EQ(came_out.free, 0);
+  EXPECT_FALSE(came_out.provesMotion(t.check.params()));
+  Scene moved_before;
+  moved_before.posts = {{5, 0, 0.3, 1.8}};
+  const TwoFrames m(moved_before, after);
+  const auto left =
+      m.check.evidence(m.f1, 1, m.clusterAt(6, 0), 0, m.chain, Eigen::Vector3d(1, 0, 0));
+  EXPECT_GT(left.free, 5);
+  EXPECT_TRUE(left.provesMotion(m.check.params()));
 }

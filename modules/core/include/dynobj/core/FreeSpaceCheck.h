@@ -37,6 +37,12 @@ struct FreeSpaceParams : public StageParams {
   /// column between sweeps, and its own ray then grazes past it (0 = its own ray only). Beyond
   /// the paper (docs/algorithm.md 7b).
   int side_rays = 1;
+  /// [rows] ... and only if the rays this many rows above and below it did too: a point lies
+  /// between two beams, and where a beam grazes a horizontal surface (a car's roof or bonnet, a
+  /// table) the range it meets changes a lot with its elevation; the beam nearest the point then
+  /// passes over the surface the point is on (0 = its own row only). Beyond the paper
+  /// (docs/algorithm.md 7b).
+  int side_rows = 1;
   /// A candidate fewer of whose pixels than this lie on a solid surface (at least half of their
   /// returning 8-neighbours within margin + range_factor x range) is seen through: foliage, not
   /// a mover (0 = off). Beyond the paper (docs/algorithm.md 7b).
@@ -91,8 +97,11 @@ class FreeSpaceCheck {
  private:
   /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless
   /// that went `through` (beyond the point's range plus tolerance); then the nearest of it and
-  /// the returning rays up to side_rays columns beside it (at the point: occupied; nearer: hidden).
+  /// the returning rays up to side_rays columns beside it and side_rows rows above and below it
+  /// (at the point: occupied; nearer: hidden).
   double rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const;
+  /// Did the range image `seen` meet a surface at `q` (its own frame), within the tolerance?
+  bool sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q) const;
 
   FreeSpaceParams p_;
   std::size_t history_;
