@@ -40,6 +40,7 @@ double secondsBetween(const Hindsight::Held& a, const Hindsight::Held& b, std::s
 void HindsightParams::visit(ParamVisitor& v) {
   v.value("lag", lag);
   v.value("min_speed", min_speed);
+  v.value("speed_window", speed_window);
   v.value("min_dynamic", min_dynamic);
   v.value("max_growth", max_growth);
   v.value("settle_distance", settle_distance);
@@ -48,6 +49,7 @@ void HindsightParams::visit(ParamVisitor& v) {
 void HindsightParams::validate() const {
   requireInRange("lag", lag, 0, 60);
   requireInRange("min_speed", min_speed, 0, 100);
+  requireInRange("speed_window", speed_window, 0, 60);
   requireInRange("min_dynamic", min_dynamic, 0, 60);
   requirePositive("max_growth", max_growth);
   requireInRange("settle_distance", settle_distance, 0, 1000);
@@ -77,12 +79,16 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
     Eigen::Isometry3d T_jk = Eigen::Isometry3d::Identity();
     int run = 1;  // sweeps the track has been seen dynamic in, up to this one
     bool revising = false;
+    path_.clear();  // where the track was seen, in frame k's coordinates, newest first
+    path_.emplace_back(k, o.centroid);
     for (std::size_t j = k; j-- > 0;) {
       T_jk = held[j + 1].result->ego_motion.motion * T_jk;
       DetectionResult& r = *held[j].result;
       TrackedObject* earlier = findTrack(r.objects, o.id);
       if (!earlier) continue;  // not seen then (coasting)
+      const Eigen::Vector3d here = T_jk.inverse() * earlier->centroid;
       if (earlier->dynamic) {
+        path_.emplace_back(j, here);
         // Still in the run; or, revising, an earlier run reached: it was revised then.
         if (revising || ++run > trusted) break;  // a longer run was trusted before
         continue;
@@ -91,9 +97,20 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
       // the recording, where nothing will tell a short run from a flicker any more.
       if (!revising && run != trusted && !(last && run < trusted)) break;
       revising = true;
-      const double way = (T_jk * o.centroid - earlier->centroid).head<2>().norm();
-      if (way < p_.min_speed * secondsBetween(held[j], held[k], k - j)) break;  // not moving yet
-      if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;    // merged then
+      // Its speed from here: over speed_window, to the first later sweep that far on (the
+      // newest when none is, or when speed_window = 0).
+      std::size_t to = 0;
+      for (std::size_t i = path_.size(); p_.speed_window > 0 && i-- > 1;) {
+        const std::size_t j2 = path_[i].first;
+        if (secondsBetween(held[j], held[j2], j2 - j) >= p_.speed_window - 1e-9) {
+          to = i;
+          break;
+        }
+      }
+      const std::size_t j2 = path_[to].first;
+      const double way = (here - path_[to].second).head<2>().norm();
+      if (way < p_.min_speed * secondsBetween(held[j], held[j2], j2 - j)) break;  // not moving yet
+      if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;      // merged then
       const LidarFrame& f = *held[j].frame;
       owner_.create(f.range.size());
       owner_.setTo(-1);
@@ -102,6 +119,7 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
       earlier->dynamic = true;
       earlier->points = grown;
       added += grown;
+      path_.emplace_back(j, here);
     }
   }
   const double ms =

@@ -139,12 +139,13 @@ TEST(Hindsight, TrustsATrackOnlyOnceItHasBeenDynamicForMinDynamic) {
 
 TEST(Hindsight, StopsWhereTheObjectWasNotYetMovingOrWasFlaggedAlready) {
   // Standing until frame 2, then 1.5 m/s, dynamic in the last frame; min_dynamic 0: one frame
-  // is trusted. Average speeds from frames 3, 2, 1, 0 to frame 4: 1.5, 1.5, 1.0 and 0.75 m/s;
-  // with min_speed 0.9 frames 3 to 1 are flagged back, frame 0 not (frames 1 and 2, standing,
-  // are the price of judging on the average: at most `lag` seconds).
+  // is trusted. Judged on the average to the last frame (speed_window 0), from frames 3, 2, 1, 0:
+  // 1.5, 1.5, 1.0 and 0.75 m/s; with min_speed 0.9 frames 3 to 1 are flagged back, frame 0 not
+  // (frames 1 and 2, standing, are the price of judging on the average).
   Sequence seq({{4, -0.3}, {4, -0.3}, {4, -0.3}, {4, -0.15}, {4, 0}}, forward(0), 1);
   HindsightParams p;
   p.min_speed = 0.9;
+  p.speed_window = 0;
   p.min_dynamic = 0;
   Hindsight(p).revise(seq.held());
   EXPECT_TRUE(seq.flagged(0).empty());
@@ -157,6 +158,32 @@ TEST(Hindsight, StopsWhereTheObjectWasNotYetMovingOrWasFlaggedAlready) {
   Hindsight().revise(again.held());
   for (std::size_t j = 0; j < 3; j++) EXPECT_TRUE(again.flagged(j).empty()) << "frame " << j;
   EXPECT_EQ(again.flagged(3), again.post[3]);
+}
+
+TEST(Hindsight, JudgesEachEarlierSweepOnItsOwnSpeedNotOnTheAverageToTheLast) {
+  // Standing in frames 0-5, then 1.5 m/s in frames 6-9, dynamic in the last two (min_dynamic 0.2
+  // s: trusted); min_speed 0.9 m/s. The average speed to frame 9 reaches back into the rest:
+  // 1.0 m/s from frame 3 (0.6 m in 0.6 s). Over speed_window = 0.2 s, frame 5 moves 0.3 m to
+  // frame 7 (1.5 m/s) but frame 4 only 0.15 m to frame 6 (0.75 m/s): the walk back stops there.
+  std::vector<Eigen::Vector2d> at(6, Eigen::Vector2d(4, -0.6));
+  for (int j = 1; j <= 4; j++) at.emplace_back(4, -0.6 + 0.15 * j);
+  auto revised = [&](double speed_window) {
+    Sequence seq(at, forward(0), 2);
+    HindsightParams p;
+    p.min_speed = 0.9;
+    p.min_dynamic = 0.2;
+    p.speed_window = speed_window;
+    Hindsight(p).revise(seq.held());
+    std::vector<std::size_t> frames;
+    for (std::size_t j = 0; j < 8; j++)
+      if (!seq.flagged(j).empty()) frames.push_back(j);
+    return frames;
+  };
+  EXPECT_EQ(revised(0.2), (std::vector<std::size_t>{5, 6, 7}));
+  EXPECT_EQ(revised(0), (std::vector<std::size_t>{3, 4, 5, 6, 7}));
+  HindsightParams bad;
+  bad.speed_window = -1;
+  EXPECT_THROW(bad.validate(), ParameterError);
 }
 
 TEST(Hindsight, StopsAtAClusterThatHadMergedWithSomethingElse) {

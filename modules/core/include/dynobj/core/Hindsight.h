@@ -4,14 +4,16 @@
 // and, at the start of a recording, never in its first sweeps. An offline run can hold each
 // frame's result for `lag` seconds before writing it; once a track has been dynamic for
 // `min_dynamic` seconds, its clusters in the held frames before that are flagged too (grown as in
-// Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to its
-// current position at least `min_speed` fast and its cluster was not much larger than the object
-// (a walker merged with a bench); before a frame is written, an object whose track then got
-// nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour. See
-// docs/algorithm.md §9.
+// Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to
+// where it was `speed_window` later at least `min_speed` fast and its cluster was not much larger
+// than the object (a walker merged with a bench); before a frame is written, an object whose
+// track then got nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
+// See docs/algorithm.md §9.
 #pragma once
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "dynobj/core/LidarFrame.h"
@@ -23,11 +25,13 @@ namespace dynobj::core {
 struct DetectionResult;
 
 struct HindsightParams : public StageParams {
-  double lag = 1.0;          ///< [s] how long an offline run holds a frame; 0 = online (the paper)
-  double min_speed = 0.5;    ///< [m/s] average speed from an earlier sweep to the confirming one
-  double min_dynamic = 0.3;  ///< [s] a track dynamic this long is trusted (one sweep at least)
-  double max_growth = 0.5;   ///< [m] an earlier cluster whose horizontal extent (box diagonal)
-                             ///< exceeds 1.5 x the object's by more had merged: stop
+  double lag = 1.0;           ///< [s] how long an offline run holds a frame; 0 = online (the paper)
+  double min_speed = 0.5;     ///< [m/s] speed from an earlier sweep to the sweep speed_window later
+  double speed_window = 0.3;  ///< [s] (0 = to the confirming sweep: an average that reaches back
+                              ///< into a rest before the walk)
+  double min_dynamic = 0.3;   ///< [s] a track dynamic this long is trusted (one sweep at least)
+  double max_growth = 0.5;    ///< [m] an earlier cluster whose horizontal extent (box diagonal)
+                              ///< exceeds 1.5 x the object's by more had merged: stop
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -67,6 +71,7 @@ class Hindsight {
   HindsightParams p_;
   RegionGrower grower_;
   cv::Mat_<int> owner_;
+  std::vector<std::pair<std::size_t, Eigen::Vector3d>> path_;  ///< revise(): frame, position
 };
 
 }  // namespace dynobj::core
