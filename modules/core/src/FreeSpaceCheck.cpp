@@ -156,8 +156,9 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
     return e;
   const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
   const int W = frame.cols();
-  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`.
-  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen) {
+  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
+  // a free vote counts only where `free_if` holds for the placed point (else unknown).
+  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen, const auto& free_if) {
     for (int px : cluster.pixels) {
       const cv::Vec3f& p = frame.xyz(px / W, px % W);
       const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
@@ -167,31 +168,23 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
         continue;
       }
       const double expected = q.norm(), tol = p_.tolerance(expected);
-      tally(e, rayBeside(seen, r, c, expected + tol), expected, tol);
+      FreeSpaceEvidence one;
+      tally(one, rayBeside(seen, r, c, expected + tol), expected, tol);
+      if (one.free > 0 && !free_if(q)) one = {0, 0, 1};
+      e.free += one.free;
+      e.occupied += one.occupied;
+      e.unknown += one.unknown;
     }
   };
-  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old);
+  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old,
+           [](const Eigen::Vector3d&) { return true; });
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
   // No verdict (hidden then): the space it left, moved back by `shift`. Still occupied now
   // refutes the motion. Seen through now proves it only where the old frame saw a surface there
   // (the object itself): the space in front of a static object that only seems to recede, as it
   // comes out from behind an occluder, is seen through too.
-  for (int px : cluster.pixels) {
-    const cv::Vec3f& p = frame.xyz(px / W, px % W);
-    const Eigen::Vector3d left = Eigen::Vector3d(p[0], p[1], p[2]) - *shift;
-    int r = -1, c = -1;
-    if (!proj_->pixelOf(left.x(), left.y(), left.z(), r, c)) {
-      e.unknown++;
-      continue;
-    }
-    const double expected = left.norm(), tol = p_.tolerance(expected);
-    FreeSpaceEvidence now;
-    tally(now, rayBeside(frame.range, r, c, expected + tol), expected, tol);
-    if (now.free > 0 && !sawSurface(*old, T * left)) now = {0, 0, 1};
-    e.free += now.free;
-    e.occupied += now.occupied;
-    e.unknown += now.unknown;
-  }
+  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range,
+           [&](const Eigen::Vector3d& left) { return sawSurface(*old, T * left); });
   return e;
 }
 

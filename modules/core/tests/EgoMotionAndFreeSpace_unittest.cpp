@@ -271,6 +271,17 @@ Cluster column(const LidarFrame& f, int c) {
   return k;
 }
 
+/// The evidence for `k` (pixels of `now`) against `before`, seen from a sensor that did not move.
+FreeSpaceEvidence stillEvidence(const FreeSpaceParams& p, const LidarFrame& before,
+                                const LidarFrame& now, const Cluster& k) {
+  FrameChain chain;
+  chain.push(0, Eigen::Isometry3d::Identity(), true);
+  chain.push(1, Eigen::Isometry3d::Identity(), true);
+  FreeSpaceCheck check(p);
+  check.remember(0, before);
+  return check.evidence(now, 1, k, 0, chain);
+}
+
 }  // namespace
 
 TEST(FreeSpaceCheck, AnOccludingEdgeThatShiftedByAColumnIsNotFreeSpace) {
@@ -285,15 +296,10 @@ TEST(FreeSpaceCheck, AnOccludingEdgeThatShiftedByAColumnIsNotFreeSpace) {
   });
   const LidarFrame now = rayFrame(
       [](int, int c) { return (c >= 20 && c <= 31) || c == 40 || c == 44 ? 5.0F : 20.0F; });
-  FrameChain chain;
-  chain.push(0, Eigen::Isometry3d::Identity(), true);
-  chain.push(1, Eigen::Isometry3d::Identity(), true);
   auto evidence = [&](int side_rays, int c) {
     FreeSpaceParams p;
     p.side_rays = side_rays;
-    FreeSpaceCheck check(p);
-    check.remember(0, before);
-    return check.evidence(now, 1, column(now, c), 0, chain);
+    return stillEvidence(p, before, now, column(now, c));
   };
   const FreeSpaceEvidence own = evidence(0, 31), beside = evidence(1, 31);
   EXPECT_EQ(own.free, 4);
@@ -317,17 +323,12 @@ TEST(FreeSpaceCheck, ABeamThatPassedOverTheSurfaceBelowItIsNotFreeSpace) {
   const LidarFrame before = rayFrame([](int r, int c) { return c == 10 && r == 2 ? 4.0F : 20.0F; });
   const LidarFrame now =
       rayFrame([](int r, int c) { return (c == 10 || c == 30) && r == 1 ? 5.0F : 20.0F; });
-  FrameChain chain;
-  chain.push(0, Eigen::Isometry3d::Identity(), true);
-  chain.push(1, Eigen::Isometry3d::Identity(), true);
   auto evidence = [&](int side_rows, int c) {
     FreeSpaceParams p;
     p.side_rows = side_rows;
-    FreeSpaceCheck check(p);
-    check.remember(0, before);
     Cluster k;
     k.pixels = {1 * now.cols() + c};
-    return check.evidence(now, 1, k, 0, chain);
+    return stillEvidence(p, before, now, k);
   };
   EXPECT_EQ(evidence(0, 10).free, 1);  // its own row alone: "free"
   const FreeSpaceEvidence roof = evidence(1, 10);
