@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/EgoMotionRefiner.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,7 @@ void EgoRefinementParams::visit(ParamVisitor& v) {
   v.value("ground_chain", ground_chain);
   v.value("ground_flatness", ground_flatness);
   v.value("min_correspondences", min_correspondences);
+  v.value("degenerate_share", degenerate_share);
   v.value("max_correction", max_correction);
   v.degrees("max_correction_angle", max_correction_angle);
 }
@@ -41,6 +43,7 @@ void EgoRefinementParams::validate() const {
   requireInRange("ground_chain", ground_chain, 0, 1000);
   requirePositive("ground_flatness", ground_flatness);
   requireInRange("min_correspondences", min_correspondences, 6, 10000000);
+  requireInRange("degenerate_share", degenerate_share, 0, 1.0 / 3.0);
   requirePositive("max_correction", max_correction);
   requirePositive("max_correction_angle", max_correction_angle);
 }
@@ -62,6 +65,32 @@ Eigen::Isometry3d expSE3(const Eigen::Matrix<double, 6, 1>& xi) {  // (omega, v)
 }
 
 }  // namespace
+
+int EgoMotionRefiner::keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<double, 6, 6>& H,
+                                                            int partners,
+                                                            const Eigen::Isometry3d& init,
+                                                            Eigen::Isometry3d& T) const {
+  if (p_.degenerate_share <= 0 || partners <= 0) return 0;
+  // What the partners tell of the translation once the rotation is free (Schur complement of the
+  // rotation block, left-increment coordinates: the previous frame's axes), per partner: a unit
+  // normal facing a direction adds 1 along it. Where it is weak, the projective association only
+  // pulls the estimate towards no motion (solution remapping, Zhang et al., ICRA 2016).
+  const Eigen::Matrix3d S =
+      H.block<3, 3>(3, 3) -
+      H.block<3, 3>(3, 0) * H.block<3, 3>(0, 0).ldlt().solve(H.block<3, 3>(0, 3));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(S / partners);
+  const Eigen::Vector3d change = T.translation() - init.translation();
+  Eigen::Vector3d kept = change;
+  int weak = 0;
+  for (int k = 0; k < 3; k++)
+    if (es.eigenvalues()(k) < p_.degenerate_share) {
+      const Eigen::Vector3d u = es.eigenvectors().col(k);
+      kept -= u * u.dot(change);
+      weak++;
+    }
+  T.translation() = init.translation() + kept;
+  return weak;
+}
 
 /// Normal of the previous range image at (r, c), or (0,0,0) where there is none. Its first
 /// direction joins the returns `k` columns either side, k the fewest columns at least
@@ -162,6 +191,7 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
 
   Eigen::Isometry3d T = init;
   const int iters = p_.iterations;
+  Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Zero();  // of the last step
   for (int it = 0; it < iters; it++) {
     const double gate =
         iters == 1 ? p_.max_distance
@@ -197,12 +227,14 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
     }
     out.correspondences = n;
     if (n < needed) return out;  // keep init, ok = false
+    info = H;
     const double lambda = p_.damping * H.trace() / 6.0;
     H.diagonal().array() += lambda;
     const Eigen::Matrix<double, 6, 1> xi = H.ldlt().solve(-g);
     T = expSE3(xi) * T;
     if (stride == 1 && xi.head<3>().norm() < 1e-6 && xi.tail<3>().norm() < 1e-5) break;
   }
+  out.degenerate = keepFeatureTranslationWhereDegenerate(info, out.correspondences, init, T);
   const Eigen::Isometry3d change = init.inverse() * T;
   if (change.translation().norm() > p_.max_correction ||
       Eigen::AngleAxisd(change.linear()).angle() > p_.max_correction_angle)

@@ -237,3 +237,35 @@ TEST(EgoMotionRefiner, ParametersNameTheBadKey) {
   p.ground_flatness = 0;
   EXPECT_THROW(p.validate(), ParameterError);
 }
+
+TEST(EgoMotionRefiner, ALoneMoverDoesNotDragTheMotionAlongADirectionNothingElseSees) {
+  // An open field: the floor sees height, roll and pitch, and nothing else but one post ahead,
+  // which moves 0.3 m away between the frames (a car pulling away down a street whose facades
+  // only see the lateral offset). The feature estimate is right. Its partners are the only ones
+  // that face the direction of travel, a small share of all, so that direction keeps the feature
+  // estimate instead of following the mover (degenerate_share; 0 = follow the partners).
+  Scene scene;
+  scene.room_radius = 100;  // beyond the 50 m range
+  scene.posts = {{8, 0.5, 0.3, 1.5}};
+  const auto s = dynobj::test::smallSensor(64, 1024);
+  const LidarFrame prev = dynobj::test::render(scene, s, true, 1);
+  const Eigen::Isometry3d truth = pose(0.5, 0, 0, 0);
+  scene.sensor = truth;
+  scene.posts[0].x += 0.3;
+  const LidarFrame cur = dynobj::test::render(scene, s, true, 2);
+  const auto alongTrack = [&](const EgoRefinementParams& p) {
+    EgoMotionRefiner refiner(p);
+    refiner.remember(prev);
+    const EgoRefinement g = refiner.refine(cur, truth, {});
+    EXPECT_TRUE(g.ok);
+    return std::make_pair((truth.inverse() * g.motion).translation().x(), g.degenerate);
+  };
+  const auto [kept, weak] = alongTrack(EgoRefinementParams{});
+  EXPECT_LT(std::abs(kept), 0.01);
+  EXPECT_GE(weak, 1);
+  EgoRefinementParams follow;
+  follow.degenerate_share = 0;
+  const auto [dragged, none] = alongTrack(follow);
+  EXPECT_GT(std::abs(dragged), 0.1);
+  EXPECT_EQ(none, 0);
+}

@@ -7,8 +7,10 @@
 // point of the current frame is carried into the previous frame by the current estimate and
 // projected with Eq. 1; its partner is the previous frame's point in that pixel, with the normal of
 // the previous range image there), Huber-weighted, starting from the feature estimate (or from the
-// constant-velocity guess when the features failed) and damped towards it, so a direction the
-// geometry does not constrain (a corridor's axis) keeps the feature estimate.
+// constant-velocity guess when the features failed) and damped towards it. A direction of
+// translation that few partners see (a long street's axis, where the only partners facing it are a
+// few posts, car ends, and the car ahead that moves) keeps the feature estimate's translation
+// (degenerate_share: solution remapping, Zhang, Kaess & Singh, ICRA 2016).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -41,7 +43,11 @@ struct EgoRefinementParams : public StageParams {
   /// [m] ... and the pixel lies this close to the line between them
   double ground_flatness = 0.05;
   int min_correspondences = 300;  ///< fewer partners: the feature estimate is kept
-  double max_correction = 0.5;    ///< [m] a larger change of translation is rejected ...
+  /// a direction of translation that fewer than this share of the partners' normals face
+  /// (information along it / partners, rotation marginalised; a long street's axis: ~0.005, a
+  /// hall's weakest: ~0.07) keeps the feature estimate's translation (0 = the refinement's own)
+  double degenerate_share = 0.01;
+  double max_correction = 0.5;  ///< [m] a larger change of translation is rejected ...
   double max_correction_angle = 3.0 * M_PI / 180.0;  ///< [rad] (INI: degrees) ... or of rotation
 
   void visit(ParamVisitor& v) override;
@@ -52,6 +58,7 @@ struct EgoRefinement {
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  ///< T_{prev<-cur}
   bool ok = false;          ///< enough partners and a correction within bounds
   int correspondences = 0;  ///< partners at the last step
+  int degenerate = 0;       ///< directions of translation left to the feature estimate
 };
 
 class EgoMotionRefiner {
@@ -79,6 +86,11 @@ class EgoMotionRefiner {
   cv::Mat_<cv::Vec3f> prev_xyz_;
   mutable cv::Mat_<cv::Vec3f> prev_normal_;
   cv::Vec3f normalAt(int r, int c) const;
+  /// Reverts the translation change of T (from init) along the directions of translation that
+  /// the last step's information H (undamped, over `partners`) hardly constrains; returns them.
+  int keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<double, 6, 6>& H, int partners,
+                                            const Eigen::Isometry3d& init,
+                                            Eigen::Isometry3d& T) const;
   std::optional<SphericalProjection> proj_;  ///< Eq. (1) of the remembered frame's sensor
 };
 
