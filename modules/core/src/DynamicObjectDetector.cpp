@@ -202,6 +202,10 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     seed_track_.push_back(tr.id);
     for (int px : c.pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
+  if (params_.region_growing.keep_out_settled)  // beyond the paper: a mover beside one at rest
+    for (const Track& tr : tracks_.tracks())
+      if (tr.cluster >= 0 && tr.settled && !tr.dynamic)
+        RegionGrower::keepOut(clusters_[static_cast<std::size_t>(tr.cluster)].pixels, owner_);
   return seeds;
 }
 
@@ -241,6 +245,7 @@ void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::v
     o.box_max = c.max;
     o.points = static_cast<int>(c.pixels.size());
     o.dynamic = tr.dynamic;
+    o.settled = tr.settled;
     o.age = tr.age;
     o.cluster = c.pixels;
     const auto it = std::find(seed_track_.begin(), seed_track_.end(), tr.id);

@@ -23,6 +23,11 @@ auto* findTrack(Objects& objects, int id) {
 /// car 5.27 m now, 7.40 m 0.5 s before; a walker merged with a bench: 0.5 m now, 1.8 m then).
 constexpr double kViewSpread = 1.5;
 
+/// start_check: an earlier sweep counts as standing when its speed into it is below this share
+/// of its speed out of it ...
+constexpr double kStartRatio = 0.25;
+constexpr std::size_t kRestSteps = 2;  ///< ... on each of this many steps before it
+
 /// Horizontal extent of an object's box [m].
 double extent(const TrackedObject& o) {
   return (o.box_max - o.box_min).head<2>().norm();
@@ -42,6 +47,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("min_speed", min_speed);
   v.value("speed_window", speed_window);
   v.value("min_dynamic", min_dynamic);
+  v.value("start_check", start_check);
   v.value("max_growth", max_growth);
   v.value("settle_distance", settle_distance);
 }
@@ -58,6 +64,38 @@ void HindsightParams::validate() const {
 Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing)
     : p_(p), grower_(growing) {
   p_.validate();
+}
+
+void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id) {
+  owner_.create(f.range.size());
+  owner_.setTo(RegionGrower::kFree);
+  if (!grower_.params().keep_out_settled) return;
+  for (const TrackedObject& s : r.objects)
+    if (s.settled && !s.dynamic && s.id != except_id) RegionGrower::keepOut(s.cluster, owner_);
+}
+
+bool Hindsight::movingAt(const std::vector<Held>& held, std::size_t j, int id,
+                         const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk) const {
+  // Its speed out of this sweep, to the next later sweep that saw it, against its speed into it
+  // over the kRestSteps sweeps before (each in the newest frame's coordinates). Standing here
+  // and starting after it: every step in is slow. Moving here: the steps in are about as fast
+  // as the step out (an accelerating car one sweep after it set off: 1/3 of it), and a centroid
+  // that lags for one sweep (a view that changes) does not make a rest of two.
+  const auto& [j1, p1] = path_.back();
+  const double out = (p1 - here).head<2>().norm() / secondsBetween(held[j], held[j1], j1 - j);
+  Eigen::Isometry3d T_ik = T_jk;
+  Eigen::Vector3d later = here;
+  for (std::size_t i = j; i > 0 && j - i < kRestSteps; i--) {
+    const TrackedObject* seen = findTrack(held[i - 1].result->objects, id);
+    if (!seen) return true;  // not seen then: no verdict, flag as before
+    T_ik = held[i].result->ego_motion.motion * T_ik;
+    const Eigen::Vector3d at = T_ik.inverse() * seen->centroid;
+    if ((later - at).head<2>().norm() / secondsBetween(held[i - 1], held[i], 1) >=
+        kStartRatio * out)
+      return true;
+    later = at;
+  }
+  return j < kRestSteps;  // slow on every step before it: standing (unless too few steps)
 }
 
 int Hindsight::heldFrames(double frequency) const {
@@ -111,9 +149,9 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
       const double way = (here - path_[to].second).head<2>().norm();
       if (way < p_.min_speed * secondsBetween(held[j], held[j2], j2 - j)) break;  // not moving yet
       if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;      // merged then
+      if (p_.start_check && !movingAt(held, j, o.id, here, T_jk)) break;          // about to start
       const LidarFrame& f = *held[j].frame;
-      owner_.create(f.range.size());
-      owner_.setTo(-1);
+      keepOutSettled(r, f, o.id);
       const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_)[0];
       for (int px : earlier->cluster) r.seeds(px / f.cols(), px % f.cols()) = 255;
       earlier->dynamic = true;
@@ -160,8 +198,7 @@ int Hindsight::settle(const std::vector<Held>& held) {
       if (o.dynamic) seeds.push_back(o.cluster);
     first.dynamic.setTo(0);
     first.seeds.setTo(0);
-    owner_.create(f.range.size());
-    owner_.setTo(-1);
+    keepOutSettled(first, f, -1);
     const std::vector<int> grown = grower_.grow(f, first.ground, seeds, first.dynamic, owner_);
     std::size_t s = 0;
     for (TrackedObject& o : first.objects) {

@@ -13,6 +13,7 @@ void RegionGrowingParams::visit(ParamVisitor& v) {
   v.value("depth_factor", depth_factor);
   v.value("max_extent", max_extent);
   v.value("max_pixels", max_pixels);
+  v.value("keep_out_settled", keep_out_settled);
 }
 
 void RegionGrowingParams::validate() const {
@@ -27,12 +28,18 @@ RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) {
   p_.validate();
 }
 
+void RegionGrower::keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner) {
+  int* own = owner.ptr<int>(0);
+  for (int px : pixels)
+    if (own[px] == kFree) own[px] = kKeptOut;
+}
+
 std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
                                     const std::vector<std::vector<int>>& seeds,
                                     cv::Mat_<std::uint8_t>& mask, cv::Mat_<int>& owner) {
   const int H = f.rows(), W = f.cols();
   if (mask.size() != f.range.size()) mask = cv::Mat_<std::uint8_t>(H, W, std::uint8_t{0});
-  if (owner.size() != f.range.size()) owner = cv::Mat_<int>(H, W, -1);
+  if (owner.size() != f.range.size()) owner = cv::Mat_<int>(H, W, kFree);
   // Angular gaps between neighbouring pixels: how far apart two points of one surface can be,
   // vertically (between beams) and horizontally (between columns).
   const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
@@ -54,7 +61,7 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
     queue_.clear();
     for (int px : seeds[obj]) {
       const int r = px / W, c = px % W;
-      if (!f.isValid(r, c) || owner(r, c) >= 0) continue;
+      if (!f.isValid(r, c) || owner(r, c) != kFree) continue;
       owner(r, c) = static_cast<int>(obj);
       mask(r, c) = 255;
       queue_.push_back(px);
@@ -70,7 +77,7 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
         for (int dc = -1; dc <= 1; dc++) {  // N8 of Eq. (24)
           if (dr == 0 && dc == 0) continue;
           const int cc = (c + dc + W) % W;
-          if (!f.isValid(rr, cc) || owner(rr, cc) >= 0 || ground(rr, cc)) continue;
+          if (!f.isValid(rr, cc) || owner(rr, cc) != kFree || ground(rr, cc)) continue;
           const cv::Vec3f& q = f.xyz(rr, cc);
           // Eq. (25), with epsilon widened by the gap between the two pixels' rays at this range.
           const double gap = dr == 0 ? gap_h : (dc == 0 ? gap_v : std::hypot(gap_h, gap_v));

@@ -77,3 +77,42 @@ TEST(RegionGrower, WrapsAroundTheSeamAndRespectsMaxExtent) {
   const auto n = RegionGrower(tight).grow(f, ground, {{r * f.cols() + 0}}, m2, o2);
   EXPECT_LT(n[0], cv::countNonZero(mask));
 }
+
+TEST(RegionGrower, DoesNotTakePixelsKeptOut) {
+  // Two posts touching (centres 0.6 m apart, radius 0.3): grown from the first, the region takes
+  // the second too; with the second's pixels kept out (an object known to stand still), it
+  // stops at them, and they stay kept out, in nobody's mask.
+  Scene scene;
+  scene.posts.push_back({4, 0, 0.3, 1.8});
+  scene.posts.push_back({4, 0.6, 0.3, 1.8});
+  const auto s = dynobj::test::smallSensor(16, 720);
+  const LidarFrame f = dynobj::test::render(scene, s);
+  cv::Mat_<std::uint8_t> ground;
+  GroundSegmenter().segment(f, ground);
+  std::vector<int> first, second;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      if (!f.isValid(r, c) || ground(r, c) || f.range(r, c) > 6) continue;
+      (f.xyz(r, c)[1] < 0.3f ? first : second).push_back(r * f.cols() + c);
+    }
+  ASSERT_GT(first.size(), 4u);
+  ASSERT_GT(second.size(), 4u);
+  cv::Mat_<std::uint8_t> mask;
+  cv::Mat_<int> owner;
+  RegionGrower().grow(f, ground, {{first[0]}}, mask, owner);
+  const auto taken = [&](const std::vector<int>& px) {
+    std::size_t n = 0;
+    for (int p : px) n += mask(p / f.cols(), p % f.cols()) ? 1 : 0;
+    return n;
+  };
+  ASSERT_EQ(taken(second), second.size());  // one surface: all of it without the keep-out
+  cv::Mat_<std::uint8_t> mask2;
+  cv::Mat_<int> owner2(f.rows(), f.cols(), RegionGrower::kFree);
+  RegionGrower::keepOut(second, owner2);
+  const auto counts = RegionGrower().grow(f, ground, {{first[0]}}, mask2, owner2);
+  mask = mask2;
+  EXPECT_EQ(taken(first), first.size());
+  EXPECT_EQ(taken(second), 0u);
+  EXPECT_EQ(counts[0], static_cast<int>(first.size()));
+  for (int p : second) EXPECT_EQ(owner2(p / f.cols(), p % f.cols()), RegionGrower::kKeptOut);
+}

@@ -141,11 +141,13 @@ TEST(Hindsight, StopsWhereTheObjectWasNotYetMovingOrWasFlaggedAlready) {
   // Standing until frame 2, then 1.5 m/s, dynamic in the last frame; min_dynamic 0: one frame
   // is trusted. Judged on the average to the last frame (speed_window 0), from frames 3, 2, 1, 0:
   // 1.5, 1.5, 1.0 and 0.75 m/s; with min_speed 0.9 frames 3 to 1 are flagged back, frame 0 not
-  // (frames 1 and 2, standing, are the price of judging on the average).
+  // (frames 1 and 2, standing, are the price of judging on the average; start_check, off here,
+  // would stop at frame 2).
   Sequence seq({{4, -0.3}, {4, -0.3}, {4, -0.3}, {4, -0.15}, {4, 0}}, forward(0), 1);
   HindsightParams p;
   p.min_speed = 0.9;
   p.speed_window = 0;
+  p.start_check = false;
   p.min_dynamic = 0;
   Hindsight(p).revise(seq.held());
   EXPECT_TRUE(seq.flagged(0).empty());
@@ -173,6 +175,7 @@ TEST(Hindsight, JudgesEachEarlierSweepOnItsOwnSpeedNotOnTheAverageToTheLast) {
     p.min_speed = 0.9;
     p.min_dynamic = 0.2;
     p.speed_window = speed_window;
+    p.start_check = false;  // the window alone (the start check: the next test)
     Hindsight(p).revise(seq.held());
     std::vector<std::size_t> frames;
     for (std::size_t j = 0; j < 8; j++)
@@ -184,6 +187,40 @@ TEST(Hindsight, JudgesEachEarlierSweepOnItsOwnSpeedNotOnTheAverageToTheLast) {
   HindsightParams bad;
   bad.speed_window = -1;
   EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(Hindsight, DoesNotFlagTheLastSweepBeforeAStart) {
+  // Standing in frames 0-5, starting between frames 5 and 6, then 1.5 m/s. Over the next 0.2 s
+  // frame 5 moves 0.3 m (1.5 m/s): the window flags it. But it came into frame 5 at 0 m/s from
+  // frame 4 and left it at 1.5 m/s (at least half is needed): it stood at frame 5. Frame 6 came
+  // in at 1.5 m/s and left at 1.5 m/s.
+  std::vector<Eigen::Vector2d> at(6, Eigen::Vector2d(4, -0.6));
+  for (int j = 1; j <= 4; j++) at.emplace_back(4, -0.6 + 0.15 * j);
+  auto revised = [&](bool start_check) {
+    Sequence seq(at, forward(0), 2);
+    HindsightParams p;
+    p.min_speed = 0.9;
+    p.min_dynamic = 0.2;
+    p.speed_window = 0.2;
+    p.start_check = start_check;
+    Hindsight(p).revise(seq.held());
+    std::vector<std::size_t> frames;
+    for (std::size_t j = 0; j < 8; j++)
+      if (!seq.flagged(j).empty()) frames.push_back(j);
+    return frames;
+  };
+  EXPECT_EQ(revised(true), (std::vector<std::size_t>{6, 7}));
+  EXPECT_EQ(revised(false), (std::vector<std::size_t>{5, 6, 7}));
+  // A walker moving all along is still flagged back to the first held frame, also when its
+  // centroid lagged for one sweep (frame 2 where frame 1 was: a rest of one step is none).
+  Sequence seq(walking(7), forward(0));
+  Hindsight().revise(seq.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(seq.flagged(j), seq.post[j]) << "frame " << j;
+  std::vector<Eigen::Vector2d> lag = walking(7);
+  lag[2] = lag[1];
+  Sequence lagged(lag, forward(0));
+  Hindsight().revise(lagged.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(lagged.flagged(j), lagged.post[j]) << "frame " << j;
 }
 
 TEST(Hindsight, StopsAtAClusterThatHadMergedWithSomethingElse) {

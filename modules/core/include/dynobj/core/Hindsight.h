@@ -11,7 +11,7 @@
 // See docs/algorithm.md §9.
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <utility>
 #include <vector>
@@ -30,8 +30,12 @@ struct HindsightParams : public StageParams {
   double speed_window = 0.3;  ///< [s] (0 = to the confirming sweep: an average that reaches back
                               ///< into a rest before the walk)
   double min_dynamic = 0.3;   ///< [s] a track dynamic this long is trusted (one sweep at least)
-  double max_growth = 0.5;    ///< [m] an earlier cluster whose horizontal extent (box diagonal)
-                              ///< exceeds 1.5 x the object's by more had merged: stop
+  /// an earlier sweep is not flagged when the object stood there: on each of the two steps from
+  /// the sweeps before it, its speed was below a quarter of its speed to the next sweep that saw
+  /// it (a walker who starts just after a sweep; false = flag it, as before Session 14)
+  bool start_check = true;
+  double max_growth = 0.5;     ///< [m] an earlier cluster whose horizontal extent (box diagonal)
+                               ///< exceeds 1.5 x the object's by more had merged: stop
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -71,6 +75,12 @@ class Hindsight {
   HindsightParams p_;
   RegionGrower grower_;
   cv::Mat_<int> owner_;
+  /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) kept out.
+  void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);
+  /// start_check for the track `id` at held frame j (position `here`, in the newest frame's
+  /// coordinates, T_jk their transform into frame j), path_ holding its later positions.
+  bool movingAt(const std::vector<Held>& held, std::size_t j, int id, const Eigen::Vector3d& here,
+                const Eigen::Isometry3d& T_jk) const;
   std::vector<std::pair<std::size_t, Eigen::Vector3d>> path_;  ///< revise(): frame, position
 };
 

@@ -23,6 +23,9 @@ struct RegionGrowingParams : public StageParams {
   double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
                             ///< centre, or than half the seeds' own extent plus this, if larger
   int max_pixels = 20000;   ///< safety limit per object
+  /// a mover's region does not take the points of an object whose track was judged static
+  /// settled_frames ([tracking]) times in a row: a walker passing someone who stands
+  bool keep_out_settled = true;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -31,13 +34,22 @@ struct RegionGrowingParams : public StageParams {
 class RegionGrower {
  public:
   explicit RegionGrower(const RegionGrowingParams& p = {});
+  const RegionGrowingParams& params() const { return p_; }
+
+  static constexpr int kFree = -1;     ///< `owner` of a pixel no object has taken
+  static constexpr int kKeptOut = -2;  ///< `owner` of a pixel no object may take (keepOut)
 
   /// Grows every object's seeds (pixel indices row * W + col) over `frame`, skipping `ground`
-  /// pixels. Adds the grown pixels to `mask` (255); `owner` (CV_32S, -1 = none) tells which
-  /// object (index into `seeds`) took each pixel. Returns the pixel count of each object.
+  /// pixels. Adds the grown pixels to `mask` (255); `owner` (CV_32S, kFree = none) tells which
+  /// object (index into `seeds`) took each pixel; only kFree pixels are taken, so pixels taken
+  /// by an earlier call or kept out stay theirs. Returns the pixel count of each object.
   std::vector<int> grow(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& ground,
                         const std::vector<std::vector<int>>& seeds, cv::Mat_<std::uint8_t>& mask,
                         cv::Mat_<int>& owner);
+
+  /// Marks `pixels` (row * W + col) of a sized `owner` kept out of the next grow(): the points
+  /// of an object known to stand still, which a mover beside it must not take.
+  static void keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner);
 
  private:
   RegionGrowingParams p_;
