@@ -162,55 +162,43 @@ TEST(Hindsight, StopsWhereTheObjectWasNotYetMovingOrWasFlaggedAlready) {
   EXPECT_EQ(again.flagged(3), again.post[3]);
 }
 
-TEST(Hindsight, JudgesEachEarlierSweepOnItsOwnSpeedNotOnTheAverageToTheLast) {
-  // Standing in frames 0-5, then 1.5 m/s in frames 6-9, dynamic in the last two (min_dynamic 0.2
-  // s: trusted); min_speed 0.9 m/s. The average speed to frame 9 reaches back into the rest:
-  // 1.0 m/s from frame 3 (0.6 m in 0.6 s). Over speed_window = 0.2 s, frame 5 moves 0.3 m to
-  // frame 7 (1.5 m/s) but frame 4 only 0.15 m to frame 6 (0.75 m/s): the walk back stops there.
+/// Standing in frames 0-5 at (4, -0.6), starting between frames 5 and 6, then 1.5 m/s in frames
+/// 6-9, dynamic in the last two (min_dynamic 0.2 s: trusted), min_speed 0.9 m/s: the frames
+/// hindsight flags with these settings.
+std::vector<std::size_t> flaggedAfterAStart(double speed_window, bool start_check) {
   std::vector<Eigen::Vector2d> at(6, Eigen::Vector2d(4, -0.6));
   for (int j = 1; j <= 4; j++) at.emplace_back(4, -0.6 + 0.15 * j);
-  auto revised = [&](double speed_window) {
-    Sequence seq(at, forward(0), 2);
-    HindsightParams p;
-    p.min_speed = 0.9;
-    p.min_dynamic = 0.2;
-    p.speed_window = speed_window;
-    p.start_check = false;  // the window alone (the start check: the next test)
-    Hindsight(p).revise(seq.held());
-    std::vector<std::size_t> frames;
-    for (std::size_t j = 0; j < 8; j++)
-      if (!seq.flagged(j).empty()) frames.push_back(j);
-    return frames;
-  };
-  EXPECT_EQ(revised(0.2), (std::vector<std::size_t>{5, 6, 7}));
-  EXPECT_EQ(revised(0), (std::vector<std::size_t>{3, 4, 5, 6, 7}));
+  Sequence seq(at, forward(0), 2);
+  HindsightParams p;
+  p.min_speed = 0.9;
+  p.min_dynamic = 0.2;
+  p.speed_window = speed_window;
+  p.start_check = start_check;
+  Hindsight(p).revise(seq.held());
+  std::vector<std::size_t> frames;
+  for (std::size_t j = 0; j < 8; j++)
+    if (!seq.flagged(j).empty()) frames.push_back(j);
+  return frames;
+}
+
+TEST(Hindsight, JudgesEachEarlierSweepOnItsOwnSpeedNotOnTheAverageToTheLast) {
+  // The average speed to frame 9 reaches back into the rest: 1.0 m/s from frame 3 (0.6 m in
+  // 0.6 s). Over speed_window = 0.2 s, frame 5 moves 0.3 m to frame 7 (1.5 m/s) but frame 4 only
+  // 0.15 m to frame 6 (0.75 m/s): the walk back stops there. (The window alone: no start check.)
+  EXPECT_EQ(flaggedAfterAStart(0.2, false), (std::vector<std::size_t>{5, 6, 7}));
+  EXPECT_EQ(flaggedAfterAStart(0, false), (std::vector<std::size_t>{3, 4, 5, 6, 7}));
   HindsightParams bad;
   bad.speed_window = -1;
   EXPECT_THROW(bad.validate(), ParameterError);
 }
 
 TEST(Hindsight, DoesNotFlagTheLastSweepBeforeAStart) {
-  // Standing in frames 0-5, starting between frames 5 and 6, then 1.5 m/s. Over the next 0.2 s
-  // frame 5 moves 0.3 m (1.5 m/s): the window flags it. But it came into frame 5 at 0 m/s from
-  // frame 4 and left it at 1.5 m/s (at least half is needed): it stood at frame 5. Frame 6 came
-  // in at 1.5 m/s and left at 1.5 m/s.
-  std::vector<Eigen::Vector2d> at(6, Eigen::Vector2d(4, -0.6));
-  for (int j = 1; j <= 4; j++) at.emplace_back(4, -0.6 + 0.15 * j);
-  auto revised = [&](bool start_check) {
-    Sequence seq(at, forward(0), 2);
-    HindsightParams p;
-    p.min_speed = 0.9;
-    p.min_dynamic = 0.2;
-    p.speed_window = 0.2;
-    p.start_check = start_check;
-    Hindsight(p).revise(seq.held());
-    std::vector<std::size_t> frames;
-    for (std::size_t j = 0; j < 8; j++)
-      if (!seq.flagged(j).empty()) frames.push_back(j);
-    return frames;
-  };
-  EXPECT_EQ(revised(true), (std::vector<std::size_t>{6, 7}));
-  EXPECT_EQ(revised(false), (std::vector<std::size_t>{5, 6, 7}));
+  // Over the next 0.2 s frame 5 moves 0.3 m (1.5 m/s): the window flags it. But it came into
+  // frame 5 at 0 m/s from frame 4, and into frame 4 from frame 3, and left it at 1.5 m/s (a
+  // quarter of that is needed on one of the two steps in): it stood at frame 5. Frame 6 came in
+  // at 1.5 m/s.
+  EXPECT_EQ(flaggedAfterAStart(0.2, true), (std::vector<std::size_t>{6, 7}));
+  EXPECT_EQ(flaggedAfterAStart(0.2, false), (std::vector<std::size_t>{5, 6, 7}));
   // A walker moving all along is still flagged back to the first held frame, also when its
   // centroid lagged for one sweep (frame 2 where frame 1 was: a rest of one step is none).
   Sequence seq(walking(7), forward(0));
