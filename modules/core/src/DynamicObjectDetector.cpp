@@ -202,7 +202,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     seed_track_.push_back(tr.id);
     for (int px : c.pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
-  if (params_.region_growing.keep_out_settled)  // beyond the paper: a mover beside one at rest
+  if (grower_.params().keep_out_settled)  // beyond the paper: a mover beside one at rest (as §9)
     for (const Track& tr : tracks_.tracks())
       if (tr.cluster >= 0 && tr.settled && !tr.dynamic)
         RegionGrower::keepOut(clusters_[static_cast<std::size_t>(tr.cluster)].pixels, owner_);
