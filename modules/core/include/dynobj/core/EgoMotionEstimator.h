@@ -84,7 +84,8 @@ class EgoMotionEstimator {
   void solve(const std::vector<std::pair<int, int>>& pairs, EgoMotion& em);
 
   EgoMotionParams p_;
-  cv::Ptr<cv::ORB> orb_;
+  cv::Ptr<cv::ORB> detector_;   ///< ORB keypoints (FAST, Harris, orientation)
+  cv::Ptr<cv::ORB> describer_;  ///< ORB descriptors of those keypoints
   cv::BFMatcher matcher_;
   Features prev_, cur_;
   bool have_prev_ = false;
