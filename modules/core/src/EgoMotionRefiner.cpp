@@ -221,12 +221,16 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
       Eigen::Matrix<double, 6, 1> J;
       J.head<3>() = q.cross(nn);
       J.tail<3>() = nn;
-      H.noalias() += w * J * J.transpose();
+      const Eigen::Matrix<double, 6, 1> wJ = w * J;
+      for (int b = 0; b < 6; b++)  // the lower triangle of w J J^T (mirrored after the loop)
+        for (int a = b; a < 6; a++) H(a, b) += wJ(a) * J(b);
       g.noalias() += w * e * J;
       n++;
     }
     out.correspondences = n;
     if (n < needed) return out;  // keep init, ok = false
+    for (int b = 1; b < 6; b++)
+      for (int a = 0; a < b; a++) H(a, b) = H(b, a);
     info = H;
     const double lambda = p_.damping * H.trace() / 6.0;
     H.diagonal().array() += lambda;
