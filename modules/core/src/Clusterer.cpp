@@ -326,12 +326,20 @@ void Clusterer::linkGrid(std::vector<int>& parent) {
     while (up < n && cells_[up].first == key + 1) up++;
     for (std::size_t a = s; a < e; a++)
       for (std::size_t b = a + 1; b < up; b++) linkIfNear(a, b);  // same cell and the one above
+    // A cell whose points are already one component need not be tested against a neighbour
+    // point of that component (dense surfaces, most pairs): the components are the same.
+    bool one = e - s >= 2;
+    for (std::size_t a = s + 1; one && a < e; a++)
+      one = root(sparent_, static_cast<int>(a)) == root(sparent_, static_cast<int>(s));
     for (int k = 0; k < 4; k++) {
       const std::uint64_t lo = key + offset[k] - 1, hi = key + offset[k] + 1;
       std::size_t& c = cursor[k];
       while (c < n && cells_[c].first < lo) c++;
-      for (std::size_t b = c; b < n && cells_[b].first <= hi; b++)
+      for (std::size_t b = c; b < n && cells_[b].first <= hi; b++) {
+        if (one && root(sparent_, static_cast<int>(b)) == root(sparent_, static_cast<int>(s)))
+          continue;
         for (std::size_t a = s; a < e; a++) linkIfNear(a, b);
+      }
     }
     s = e;
   }
