@@ -55,12 +55,11 @@ void ClusteringParams::validate() const {
 }
 
 void computeClusterShape(const LidarFrame& f, Cluster& c) {
-  const int W = f.cols();
   Eigen::Vector3d sum(0, 0, 0);
   c.min = Eigen::Vector3d::Constant(1e18);
   c.max = Eigen::Vector3d::Constant(-1e18);
   for (int px : c.pixels) {
-    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const cv::Vec3f& p = f.pointAt(px);
     const Eigen::Vector3d q(p[0], p[1], p[2]);
     sum += q;
     c.min = c.min.cwiseMin(q);
@@ -70,7 +69,7 @@ void computeClusterShape(const LidarFrame& f, Cluster& c) {
   c.centroid = sum / n;
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (int px : c.pixels) {
-    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const cv::Vec3f& p = f.pointAt(px);
     const Eigen::Vector2d d(p[0] - c.centroid.x(), p[1] - c.centroid.y());
     cov += d * d.transpose();
   }
@@ -81,7 +80,7 @@ void computeClusterShape(const LidarFrame& f, Cluster& c) {
   c.elongation = std::sqrt(l1 / l2);
   double lo = 1e18, hi = -1e18;
   for (int px : c.pixels) {
-    const cv::Vec3f& p = f.xyz(px / W, px % W);
+    const cv::Vec3f& p = f.pointAt(px);
     const double t = (p[0] - c.centroid.x()) * c.main_direction.x() +
                      (p[1] - c.centroid.y()) * c.main_direction.y();
     lo = std::min(lo, t);
@@ -205,7 +204,6 @@ void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
 }
 
 void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
-  const int W = f.cols();
   const float zs = static_cast<float>(p_.horizontal_distance / p_.vertical_distance);
   // With voxel > 0, the search holds one representative point per voxel (the first feature in
   // it): dense surfaces give many features per voxel, and linking at eps_xy = 0.35 m does not
@@ -222,7 +220,7 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
     slot_rep_.resize(cap);
     const double inv = 1.0 / p_.voxel;
     for (std::size_t i = 0; i < pixels_.size(); i++) {
-      const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
+      const cv::Vec3f& p = f.pointAt(pixels_[i]);
       const std::uint64_t key = cellKey(cellOf(p[0], inv), cellOf(p[1], inv), cellOf(p[2], inv));
       std::size_t h = (key * 0x9E3779B97F4A7C15ull) >> shift;
       while (slot_key_[h] != kEmptySlot && slot_key_[h] != key) h = (h + 1) & (cap - 1);
@@ -235,7 +233,7 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
     }
   } else {
     for (std::size_t i = 0; i < pixels_.size(); i++) {
-      const cv::Vec3f& p = f.xyz(pixels_[i] / W, pixels_[i] % W);
+      const cv::Vec3f& p = f.pointAt(pixels_[i]);
       pts_.emplace_back(p[0], p[1], p[2] * zs);
       rep_of[i] = static_cast<int>(i);
     }

@@ -155,12 +155,11 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
       old->size() != frame.range.size())
     return e;
   const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
-  const int W = frame.cols();
   // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
   // a free vote counts only where `free_if` holds for the placed point (else unknown).
   auto testRays = [&](const auto& place, const cv::Mat_<float>& seen, const auto& free_if) {
     for (int px : cluster.pixels) {
-      const cv::Vec3f& p = frame.xyz(px / W, px % W);
+      const cv::Vec3f& p = frame.pointAt(px);
       const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
       int r = -1, c = -1;
       if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) {

@@ -48,15 +48,14 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
     if (seeds[obj].empty()) continue;
     double cx = 0, cy = 0;
     for (int px : seeds[obj]) {
-      cx += f.xyz(px / W, px % W)[0];
-      cy += f.xyz(px / W, px % W)[1];
+      cx += f.pointAt(px)[0];
+      cy += f.pointAt(px)[1];
     }
     cx /= static_cast<double>(seeds[obj].size());
     cy /= static_cast<double>(seeds[obj].size());
     double seed_radius = 0;  // large objects (cars) may grow farther than small ones
     for (int px : seeds[obj])
-      seed_radius = std::max(
-          seed_radius, std::hypot(f.xyz(px / W, px % W)[0] - cx, f.xyz(px / W, px % W)[1] - cy));
+      seed_radius = std::max(seed_radius, std::hypot(f.pointAt(px)[0] - cx, f.pointAt(px)[1] - cy));
     const double extent = std::max(p_.max_extent, seed_radius + p_.max_extent / 2);
     queue_.clear();
     for (int px : seeds[obj]) {

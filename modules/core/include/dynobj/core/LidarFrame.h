@@ -41,6 +41,11 @@ struct LidarFrame {
   std::size_t pixelCount() const { return range.total(); }
   bool isValid(int r, int c) const { return valid(r, c) != 0; }
   int pixelIndex(int r, int c) const { return r * cols() + c; }
+  /// The point at pixel index `px` (row * cols + col), without dividing by cols when the grid is
+  /// one block of memory (always, unless a caller made it a view of a larger image).
+  const cv::Vec3f& pointAt(int px) const {
+    return xyz.isContinuous() ? xyz.ptr<cv::Vec3f>(0)[px] : xyz(px / cols(), px % cols());
+  }
   std::size_t validCount() const;
   std::size_t sourcePointCount() const { return point_pixel.size(); }
 
