@@ -189,6 +189,17 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
     }
   }
 
+  // Each point's partner in the previous frame (its pixel, and there the point and normal, or
+  // none): between steps a point mostly projects to the same pixel again, and this short list
+  // stays in cache where the previous frame's images (MBs, read at scattered pixels) do not.
+  struct Partner {
+    int px = -1;      ///< previous frame's pixel, -1 = not looked up yet
+    bool ok = false;  ///< a partner with a normal there, not excluded
+    cv::Vec3f s, n;   ///< its point and normal
+  };
+  std::vector<Partner> partners(pts.size());
+  const int W = f.cols();
+
   Eigen::Isometry3d T = init;
   const int iters = p_.iterations;
   Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Zero();  // of the last step
@@ -208,11 +219,18 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
       const Eigen::Vector3d q = T * p;  // into the previous frame
       int r, c;
       if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) continue;
-      if (use_exclude && exclude_prev(r, c)) continue;
-      cv::Vec3f& nv = prev_normal_(r, c);
-      if (std::isnan(nv[0])) nv = normalAt(r, c);
-      if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue;
-      const cv::Vec3f& sv = prev_xyz_(r, c);
+      Partner& pa = partners[i];
+      if (pa.px != r * W + c) {
+        pa.px = r * W + c;
+        pa.ok = false;
+        if (use_exclude && exclude_prev(r, c)) continue;
+        cv::Vec3f& nv = prev_normal_(r, c);
+        if (std::isnan(nv[0])) nv = normalAt(r, c);
+        if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue;
+        pa = {pa.px, true, prev_xyz_(r, c), nv};
+      }
+      if (!pa.ok) continue;
+      const cv::Vec3f &sv = pa.s, &nv = pa.n;
       const Eigen::Vector3d s(sv[0], sv[1], sv[2]), nn(nv[0], nv[1], nv[2]);
       const Eigen::Vector3d d = q - s;
       if (d.squaredNorm() > gate * gate) continue;
