@@ -71,9 +71,11 @@ class Clusterer {
   std::vector<int> label_, parent_, rep_of_, first_feature_;  ///< per-frame scratch, kept
   std::vector<std::uint64_t> slot_key_;  ///< voxel hash table: key of each slot ...
   std::vector<int> slot_rep_;            ///< ... and its representative (index in pts_)
-  std::vector<std::pair<std::uint64_t, int>> cells_;  ///< grid cell key, index in pts_
-  std::vector<Eigen::Vector3f> spts_;                 ///< pts_ in cell order
-  std::vector<int> sparent_;                          ///< union-find over spts_
+  std::vector<std::pair<std::uint64_t, int>> cells_;      ///< grid cell key, index in pts_
+  std::vector<std::pair<std::uint64_t, int>> cells_tmp_;  ///< sorting scratch
+  std::vector<int> counts_;                               ///< sorting scratch
+  std::vector<Eigen::Vector3f> spts_;                     ///< pts_ in cell order
+  std::vector<int> sparent_;                              ///< union-find over spts_
   std::vector<Eigen::Vector3f> pts_;  ///< (x, y, z * horizontal/vertical): isotropic for the tree
 };
 
