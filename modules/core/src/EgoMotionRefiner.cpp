@@ -4,7 +4,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "dynobj/core/Config.h"
@@ -160,9 +159,9 @@ void EgoMotionRefiner::remember(const LidarFrame& f, const cv::Mat_<std::uint8_t
     proj_.emplace(f.sensor);
   f.range.copyTo(prev_range_);
   f.xyz.copyTo(prev_xyz_);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  prev_normal_.create(f.rows(), f.cols());
-  prev_normal_.setTo(cv::Vec3f(nan, nan, nan));
+  prev_normal_.create(f.rows(), f.cols());  // left as it is: prev_normal_known_ says what holds
+  prev_normal_known_.create(f.rows(), f.cols());
+  prev_normal_known_.setTo(0);
   have_prev_ = true;
 }
 
@@ -225,7 +224,10 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
         pa.ok = false;
         if (use_exclude && exclude_prev(r, c)) continue;
         cv::Vec3f& nv = prev_normal_(r, c);
-        if (std::isnan(nv[0])) nv = normalAt(r, c);
+        if (!prev_normal_known_(r, c)) {
+          nv = normalAt(r, c);
+          prev_normal_known_(r, c) = 1;
+        }
         if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue;
         pa = {pa.px, true, prev_xyz_(r, c), nv};
       }

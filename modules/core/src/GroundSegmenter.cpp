@@ -78,8 +78,8 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
       while (ra >= 0 && !f.isValid(ra, c)) ra--;
       if (ra >= 0) {
         const cv::Vec3f& q = f.xyz(ra, c);
-        if (std::abs(horizontal(q) - xy) < p_.max_step * 2 && q[2] - p[2] > p_.max_step &&
-            p[2] - z_ground > p_.max_step / 2)
+        if (p[2] - z_ground > p_.max_step / 2 && q[2] - p[2] > p_.max_step &&
+            std::abs(horizontal(q) - xy) < p_.max_step * 2)  // the square root last
           continue;
       }
       out[c] = 255;

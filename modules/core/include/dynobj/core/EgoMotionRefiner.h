@@ -80,11 +80,12 @@ class EgoMotionRefiner {
   EgoRefinementParams p_;
   bool have_prev_ = false;
   /// The previous frame's range image, points and normals: a normal is computed when a partner
-  /// first needs it (NaN = not yet; (0,0,0) = none there).
+  /// first needs it (prev_normal_known_ 0 = not yet; (0,0,0) = none there).
   cv::Mat_<float> prev_range_;
   cv::Mat_<std::uint8_t> prev_ground_;  ///< empty: no ground mask was given
   cv::Mat_<cv::Vec3f> prev_xyz_;
   mutable cv::Mat_<cv::Vec3f> prev_normal_;
+  mutable cv::Mat_<std::uint8_t> prev_normal_known_;  ///< 1 = prev_normal_ computed there
   cv::Vec3f normalAt(int r, int c) const;
   /// Reverts the translation change of T (from init) along the directions of translation that
   /// the last step's information H (undamped, over `partners`) hardly constrains; returns them.
