@@ -50,6 +50,7 @@ void EgoRefinementParams::validate() const {
 namespace {
 
 constexpr std::size_t kCoarseStride = 4;  ///< coarse steps use every 4th sampled point
+constexpr std::size_t kAhead = 8;         ///< points between a prefetch and its look-up
 /// A normal whose baseline would span more than this azimuth belongs to a point within ~1 m of
 /// the sensor (the platform itself, mostly): none is computed there.
 constexpr double kMaxNormalSpan = 6.0 * M_PI / 180.0;
@@ -97,6 +98,16 @@ int EgoMotionRefiner::keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<
 /// 0.1 x range + 0.1 m). Its second joins the rows above and below, on the same surface; on a
 /// ground pixel where they are not (a ring gap), the nearest ground returns above and below when
 /// they are close and in line with it (ground_chain, ground_flatness).
+void EgoMotionRefiner::prefetchPixel(int r, int c, const cv::Mat_<std::uint8_t>* exclude) const {
+  __builtin_prefetch(&prev_normal_known_(r, c));
+  __builtin_prefetch(&prev_normal_(r, c));
+  __builtin_prefetch(&prev_xyz_(r, c));
+  if (r > 0) __builtin_prefetch(&prev_range_(r - 1, c));  // normalAt's rows
+  __builtin_prefetch(&prev_range_(r, c));
+  if (r + 1 < prev_range_.rows) __builtin_prefetch(&prev_range_(r + 1, c));
+  if (exclude) __builtin_prefetch(&(*exclude)(r, c));
+}
+
 cv::Vec3f EgoMotionRefiner::normalAt(int r, int c) const {
   const cv::Mat_<float>& range = prev_range_;
   const cv::Mat_<cv::Vec3f>& xyz = prev_xyz_;
@@ -197,6 +208,8 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
     cv::Vec3f s, n;   ///< its point and normal
   };
   std::vector<Partner> partners(pts.size());
+  std::vector<Eigen::Vector3d> moved(pts.size());       // a step's points in the previous frame ...
+  std::vector<int> rows(pts.size()), cols(pts.size());  // ... and their pixels (row -1: none)
   const int W = f.cols();
 
   Eigen::Isometry3d T = init;
@@ -213,11 +226,19 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
     // points (and need a quarter of the partners); the last ones, which set it, use them all.
     const std::size_t stride = it < p_.coarse_iterations ? kCoarseStride : 1;
     const int needed = p_.min_correspondences / static_cast<int>(stride);
+    // Every point into the previous frame first, so that the look-ups below can ask the memory
+    // for the pixels a few points ahead (scattered over images of several MB).
     for (std::size_t i = 0; i < pts.size(); i += stride) {
-      const Eigen::Vector3d& p = pts[i];
-      const Eigen::Vector3d q = T * p;  // into the previous frame
-      int r, c;
-      if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) continue;
+      moved[i] = T * pts[i];
+      if (!proj_->pixelOf(moved[i].x(), moved[i].y(), moved[i].z(), rows[i], cols[i])) rows[i] = -1;
+    }
+    for (std::size_t i = 0; i < pts.size(); i += stride) {
+      if (const std::size_t j = i + kAhead * stride;
+          j < pts.size() && rows[j] >= 0 && partners[j].px != rows[j] * W + cols[j])
+        prefetchPixel(rows[j], cols[j], use_exclude ? &exclude_prev : nullptr);
+      const Eigen::Vector3d& q = moved[i];
+      const int r = rows[i], c = cols[i];
+      if (r < 0) continue;
       Partner& pa = partners[i];
       if (pa.px != r * W + c) {
         pa.px = r * W + c;

@@ -87,6 +87,9 @@ class EgoMotionRefiner {
   mutable cv::Mat_<cv::Vec3f> prev_normal_;
   mutable cv::Mat_<std::uint8_t> prev_normal_known_;  ///< 1 = prev_normal_ computed there
   cv::Vec3f normalAt(int r, int c) const;
+  /// Asks the memory for what a look-up at previous-frame pixel (r, c) reads (no effect on
+  /// results).
+  void prefetchPixel(int r, int c, const cv::Mat_<std::uint8_t>* exclude) const;
   /// Reverts the translation change of T (from init) along the directions of translation that
   /// the last step's information H (undamped, over `partners`) hardly constrains; returns them.
   int keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<double, 6, 6>& H, int partners,
