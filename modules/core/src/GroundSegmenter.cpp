@@ -51,6 +51,11 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
   last_xy_.resize(static_cast<std::size_t>(W));
   last_z_.resize(static_cast<std::size_t>(W));
   const auto horizontal = [](const cv::Vec3f& p) { return std::sqrt(p[0] * p[0] + p[1] * p[1]); };
+  // Everything the loop reads through locals: its byte stores could alias any member.
+  const double tolerance = p_.height_tolerance, step = p_.max_step, noise = 0.25 * p_.max_step;
+  std::uint8_t* have_last = have_last_.data();
+  double* last_xy = last_xy_.data();
+  double* last_z = last_z_.data();
   for (int r = H - 1; r >= 0; r--) {
     const std::uint8_t* valid = f.valid.ptr<std::uint8_t>(r);
     const cv::Vec3f* xyz = f.xyz.ptr<cv::Vec3f>(r);
@@ -59,33 +64,31 @@ double GroundSegmenter::segment(const LidarFrame& f, cv::Mat_<std::uint8_t>& gro
       if (!valid[c]) continue;
       const cv::Vec3f& p = xyz[c];
       const double xy = horizontal(p);
-      const auto cs = static_cast<std::size_t>(c);
       bool is_ground = false;
-      if (!have_last_[cs]) {
-        is_ground = std::abs(p[2] - z_ground) <= p_.height_tolerance;
+      if (!have_last[c]) {
+        is_ground = std::abs(p[2] - z_ground) <= tolerance;
       } else {
         // The chain must move away from the sensor: a rise of at most max_slope over the
         // horizontal progress, plus a quarter of max_step for range noise. (A vertical surface
         // seen at close range, rows a few cm apart, must not climb as "small steps".)
-        const double dxy = xy - last_xy_[cs], dz = std::abs(p[2] - last_z_[cs]);
-        is_ground =
-            dxy > -0.25 * p_.max_step && dz <= tan_slope * std::max(dxy, 0.0) + 0.25 * p_.max_step;
+        const double dxy = xy - last_xy[c], dz = std::abs(p[2] - last_z[c]);
+        is_ground = dxy > -noise && dz <= tan_slope * std::max(dxy, 0.0) + noise;
       }
       if (!is_ground) continue;
       // The base of a vertical structure (a foot, a wheel, the bottom of a wall) is at ground
       // height too, but the next return above it stands at the same distance: not ground.
       int ra = r - 1;
-      while (ra >= 0 && !f.isValid(ra, c)) ra--;
+      while (ra >= 0 && !f.valid(ra, c)) ra--;
       if (ra >= 0) {
         const cv::Vec3f& q = f.xyz(ra, c);
-        if (p[2] - z_ground > p_.max_step / 2 && q[2] - p[2] > p_.max_step &&
-            std::abs(horizontal(q) - xy) < p_.max_step * 2)  // the square root last
+        if (p[2] - z_ground > step / 2 && q[2] - p[2] > step &&
+            std::abs(horizontal(q) - xy) < step * 2)  // the square root last
           continue;
       }
       out[c] = 255;
-      last_xy_[cs] = xy;
-      last_z_[cs] = p[2];
-      have_last_[cs] = 1;
+      last_xy[c] = xy;
+      last_z[c] = p[2];
+      have_last[c] = 1;
     }
   }
   return z_ground;
