@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <opencv2/imgproc.hpp>
 
 #include "dynobj/core/Config.h"
@@ -21,6 +22,13 @@ void blurWrapped(const cv::Mat_<float>& src, const ForegroundParams& p, cv::Mat&
   cv::GaussianBlur(padded, blurred, cv::Size(2 * a + 1, 2 * b + 1), p.sigma_horizontal,
                    p.sigma_vertical, cv::BORDER_REFLECT_101);
   blurred(cv::Rect(a, b, src.cols, src.rows)).copyTo(dst);
+}
+
+/// A key of a float's bits that orders like the floats (negative ones reversed below positive).
+std::uint32_t orderKey(float x) {
+  std::uint32_t u = 0;
+  std::memcpy(&u, &x, sizeof u);
+  return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
 }
 
 }  // namespace
@@ -66,11 +74,20 @@ const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
     f_.setTo(0);
     return f_;
   }
+  // The value of rank k, as std::nth_element finds it, from a histogram of the samples' order
+  // keys (top 16 bits) and a selection among the few samples of the bin that holds rank k.
+  hist_.assign(std::size_t{1} << 16, 0);
+  for (const float x : sample_) hist_[orderKey(x) >> 16]++;
   auto pct = [&](double q) {
     const auto k = static_cast<std::size_t>(q / 100.0 * static_cast<double>(sample_.size() - 1));
-    std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(k),
-                     sample_.end());
-    return static_cast<double>(sample_[k]);
+    std::size_t b = 0, before = 0;
+    while (before + hist_[b] <= k) before += hist_[b++];
+    bin_.clear();
+    for (const float x : sample_)
+      if ((orderKey(x) >> 16) == b) bin_.push_back(x);
+    const auto rank = static_cast<std::ptrdiff_t>(k - before);
+    std::nth_element(bin_.begin(), bin_.begin() + rank, bin_.end());
+    return static_cast<double>(bin_[static_cast<std::size_t>(rank)]);
   };
   // Linear stretch: the low percentile maps to 32 and the high one to 223, leaving head room so
   // that objects brighter or darker than almost everything (a few pixels) still stand out. A

@@ -2,6 +2,10 @@
 #include <dynobj/core/ForegroundExtractor.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+#include <vector>
+
 using namespace dynobj::core;
 
 namespace {
@@ -79,5 +83,58 @@ TEST(ForegroundExtractor, ParametersValidateByKey) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("kernel_half_width"), std::string::npos);
+  }
+}
+
+// Oracle: the stretch's percentiles (histogram of order keys + selection in one bin) are the
+// values a full sort of the same every-3rd-valid-pixel sample puts at their ranks, on intensities
+// with negatives, signed zeros, ties and a long tail, and with no returns in between.
+TEST(ForegroundExtractor, StretchPercentilesMatchAFullSort) {
+  SensorModel s;
+  s.rows = 32;
+  s.cols = 500;
+  s.elevation_top = 0.3;
+  s.elevation_bottom = -0.3;
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; trial++) {
+    LidarFrame f(s);
+    f.has_intensity = true;
+    std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+    std::exponential_distribution<float> tail(0.01f);
+    for (int r = 0; r < s.rows; r++)
+      for (int c = 0; c < s.cols; c++) {
+        if ((r * 7 + c * 3 + trial) % 11 == 0) continue;  // no return here
+        const int kind = (r + c + trial) % 5;
+        const float v = kind == 0   ? u(rng)
+                        : kind == 1 ? std::round(u(rng) / 10.0f) * 10.0f  // ties
+                        : kind == 2 ? (c % 2 ? 0.0f : -0.0f)
+                                    : tail(rng);
+        f.setPixel(r, c, 5.0f, v, cv::Vec3f(5, 0, 0), r * s.cols + c);
+      }
+    ForegroundParams p;
+    p.stretch_low = 1 + trial % 4;
+    p.stretch_high = 99 - trial % 3;
+    ForegroundExtractor fe(p);
+    const cv::Mat_<float>& out = fe.normalize(f);
+
+    std::vector<float> sample;
+    const int n = s.rows * s.cols;
+    for (int i = 0; i < n; i += 3)
+      if (f.valid(i / s.cols, i % s.cols)) sample.push_back(f.intensity(i / s.cols, i % s.cols));
+    std::sort(sample.begin(), sample.end());
+    const auto at = [&](double q) {
+      return static_cast<double>(
+          sample[static_cast<std::size_t>(q / 100.0 * static_cast<double>(sample.size() - 1))]);
+    };
+    const double lo = at(p.stretch_low), hi = at(p.stretch_high);
+    const double scale = 191.0 / std::max(hi - lo, 0.01 * std::abs(hi) + 1e-3);
+    for (int i = 0; i < n; i++) {
+      const int r = i / s.cols, c = i % s.cols;
+      const float want =
+          f.valid(r, c)
+              ? static_cast<float>(std::clamp(32.0 + (f.intensity(r, c) - lo) * scale, 0.0, 255.0))
+              : 0.0f;
+      ASSERT_EQ(out(r, c), want) << "trial " << trial << " pixel (" << r << ", " << c << ")";
+    }
   }
 }

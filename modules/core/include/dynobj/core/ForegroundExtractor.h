@@ -49,7 +49,8 @@ class ForegroundExtractor {
   ForegroundParams p_;
   cv::Mat_<float> f_, fv_, v_, blurred_, weight_;
   cv::Mat vert_, padded_, scratch_;  ///< blur buffers, kept across frames
-  std::vector<float> sample_;
+  std::vector<float> sample_, bin_;
+  std::vector<std::size_t> hist_;  ///< samples per top 16 bits of their order key
 };
 
 }  // namespace dynobj::core
