@@ -75,16 +75,17 @@ const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
     return f_;
   }
   // The value of rank k, as std::nth_element finds it, from a histogram of the samples' order
-  // keys (top 16 bits) and a selection among the few samples of the bin that holds rank k.
-  hist_.assign(std::size_t{1} << 16, 0);
-  for (const float x : sample_) hist_[orderKey(x) >> 16]++;
+  // keys (top 12 bits: sign, exponent and 3 bits of mantissa, an eighth of an octave) and a
+  // selection among the samples of the bin that holds rank k.
+  hist_.assign(std::size_t{1} << 12, 0);
+  for (const float x : sample_) hist_[orderKey(x) >> 20]++;
   auto pct = [&](double q) {
     const auto k = static_cast<std::size_t>(q / 100.0 * static_cast<double>(sample_.size() - 1));
     std::size_t b = 0, before = 0;
     while (before + hist_[b] <= k) before += hist_[b++];
     bin_.clear();
     for (const float x : sample_)
-      if ((orderKey(x) >> 16) == b) bin_.push_back(x);
+      if ((orderKey(x) >> 20) == b) bin_.push_back(x);
     const auto rank = static_cast<std::ptrdiff_t>(k - before);
     std::nth_element(bin_.begin(), bin_.begin() + rank, bin_.end());
     return static_cast<double>(bin_[static_cast<std::size_t>(rank)]);

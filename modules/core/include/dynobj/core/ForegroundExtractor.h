@@ -50,7 +50,7 @@ class ForegroundExtractor {
   cv::Mat_<float> f_, fv_, v_, blurred_, weight_;
   cv::Mat vert_, padded_, scratch_;  ///< blur buffers, kept across frames
   std::vector<float> sample_, bin_;
-  std::vector<std::size_t> hist_;  ///< samples per top 16 bits of their order key
+  std::vector<std::uint32_t> hist_;  ///< samples per top 12 bits of their order key
 };
 
 }  // namespace dynobj::core
