@@ -98,16 +98,6 @@ int EgoMotionRefiner::keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<
 /// 0.1 x range + 0.1 m). Its second joins the rows above and below, on the same surface; on a
 /// ground pixel where they are not (a ring gap), the nearest ground returns above and below when
 /// they are close and in line with it (ground_chain, ground_flatness).
-void EgoMotionRefiner::prefetchPixel(int r, int c, const cv::Mat_<std::uint8_t>* exclude) const {
-  __builtin_prefetch(&prev_normal_known_(r, c));
-  __builtin_prefetch(&prev_normal_(r, c));
-  __builtin_prefetch(&prev_xyz_(r, c));
-  if (r > 0) __builtin_prefetch(&prev_range_(r - 1, c));  // normalAt's rows
-  __builtin_prefetch(&prev_range_(r, c));
-  if (r + 1 < prev_range_.rows) __builtin_prefetch(&prev_range_(r + 1, c));
-  if (exclude) __builtin_prefetch(&(*exclude)(r, c));
-}
-
 cv::Vec3f EgoMotionRefiner::normalAt(int r, int c) const {
   const cv::Mat_<float>& range = prev_range_;
   const cv::Mat_<cv::Vec3f>& xyz = prev_xyz_;
@@ -154,6 +144,16 @@ cv::Vec3f EgoMotionRefiner::normalAt(int r, int c) const {
   const cv::Vec3f n = across.cross(along);
   const float len = static_cast<float>(cv::norm(n));
   return len > 1e-9f ? n / len : cv::Vec3f(0, 0, 0);
+}
+
+void EgoMotionRefiner::prefetchPixel(int r, int c, const cv::Mat_<std::uint8_t>* exclude) const {
+  __builtin_prefetch(&prev_normal_known_(r, c));
+  __builtin_prefetch(&prev_normal_(r, c));
+  __builtin_prefetch(&prev_xyz_(r, c));
+  if (r > 0) __builtin_prefetch(&prev_range_(r - 1, c));  // normalAt's rows
+  __builtin_prefetch(&prev_range_(r, c));
+  if (r + 1 < prev_range_.rows) __builtin_prefetch(&prev_range_(r + 1, c));
+  if (exclude) __builtin_prefetch(&(*exclude)(r, c));
 }
 
 EgoMotionRefiner::EgoMotionRefiner(const EgoRefinementParams& p) : p_(p) {

@@ -47,7 +47,7 @@ class ForegroundExtractor {
 
  private:
   ForegroundParams p_;
-  cv::Mat_<float> f_, fv_, v_, blurred_, weight_;
+  cv::Mat_<float> f_, v_, blurred_, weight_;
   cv::Mat vert_, padded_, scratch_;  ///< blur buffers, kept across frames
   std::vector<float> sample_, bin_;
   std::vector<std::uint32_t> hist_;  ///< samples per top 12 bits of their order key
