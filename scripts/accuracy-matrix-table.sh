@@ -4,9 +4,10 @@
 # seed x distortion) into Markdown: mean and WORST cell overall, per scenario, per sensor, per
 # distortion setting, and a scenario x sensor grid of F1.
 #   scripts/accuracy-matrix-table.sh cells.tsv ["command"] [wall seconds] [cells asked] [config]
+#                                    [shipped: 1 = config is the shipped dynobj.ini (default), 0 = not]
 set -euo pipefail
-TSV="$1" CMD="${2:-}" WALL="${3:-}" ASKED="${4:-}" CONFIG="${5:-dynobj.ini}"
-awk -F'\t' -v cmd="$CMD" -v wall="$WALL" -v asked="$ASKED" -v config="$CONFIG" '
+TSV="$1" CMD="${2:-}" WALL="${3:-}" ASKED="${4:-}" CONFIG="${5:-dynobj.ini}" SHIPPED="${6:-1}"
+awk -F'\t' -v cmd="$CMD" -v wall="$WALL" -v asked="$ASKED" -v config="$CONFIG" -v shipped="$SHIPPED" '
 function fmt(v) { return v == "" ? "—" : sprintf("%.3f", v) }
 function pct(v) { return v == "" ? "—" : sprintf("%.3f %%", 100 * v) }
 # add(group, metric, value, cell): running sum, count, min (and max) with the cell that gave it.
@@ -54,7 +55,7 @@ NR == 1 { next }
 END {
   print "# Evaluation matrix"
   print ""
-  if (cmd != "") print "Command: `" cmd "` (detector configuration: `" config "`, the shipped defaults)."
+  if (cmd != "") print "Command: `" cmd "` (detector configuration: `" config "`" (shipped == 1 ? ", the shipped defaults" : "") ")."
   printf "%d cells scored%s", cells, (asked != "" ? " of " asked : "")
   if (wall != "") printf "; wall time %d s (%.1f min)", wall, wall / 60
   printf "; sum of cell times %d s; ego-motion failures: %d sweeps.\n\n", sum["all" SUBSEP "secs"], ego_failed

@@ -113,7 +113,9 @@ wall=$(( $(date +%s) - t0 ))
 } > "$OUT/cells.tsv"
 done_cells=$(( $(wc -l < "$OUT/cells.tsv") - 1 ))
 cmd="scripts/accuracy-matrix.sh -n $FRAMES --seeds \"$SEEDS\" --distortion $DISTORTION --intensity $INTENSITY -j $JOBS"
-"$HERE/accuracy-matrix-table.sh" "$OUT/cells.tsv" "$cmd" "$wall" "${#cells[@]}" "$(basename "$CONFIG")" > "$OUT/matrix.md.partial"
+shipped=0  # the table names the configuration: the shipped one by its name, a given one in full
+[ "$CONFIG" = "$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini" ] && shipped=1
+"$HERE/accuracy-matrix-table.sh" "$OUT/cells.tsv" "$cmd" "$wall" "${#cells[@]}" "$([ $shipped = 1 ] && basename "$CONFIG" || echo "$CONFIG")" "$shipped" > "$OUT/matrix.md.partial"
 mv "$OUT/matrix.md.partial" "$OUT/matrix.md"
 log "done in ${wall} s: ${done_cells}/${#cells[@]} cells scored -> ${OUT}/matrix.md, ${OUT}/cells.tsv"
 [ "$done_cells" -eq "${#cells[@]}" ] || { log "some cells failed: see ${OUT}/cells/*/*/*/sim.log, eval.log"; exit 1; }

@@ -34,6 +34,7 @@ void ClusteringParams::visit(ParamVisitor& v) {
   v.value("horizontal_distance", horizontal_distance);
   v.value("vertical_distance", vertical_distance);
   v.value("min_points", min_points);
+  v.value("weak_min_points", weak_min_points);
   v.value("max_points", max_points);
   v.value("max_area", max_area);
   v.value("max_length", max_length);
@@ -48,6 +49,7 @@ void ClusteringParams::validate() const {
   requireOneOf("search", search, {"grid", "kdtree", "image"});
   requireInRange("min_points", min_points, 1, 1000000);
   requireInRange("max_points", max_points, min_points, 100000000);
+  requireInRange("weak_min_points", weak_min_points, 0, 1000000);  // >= min_points: none
   requireInRange("max_window", max_window, 1, 1000);
   requireInRange("max_length", max_length, 0, 1e6);
   requireInRange("max_area", max_area, 0, 1e6);
@@ -159,8 +161,9 @@ void sortByCell(std::vector<std::pair<std::uint64_t, int>>& cells,
 }  // namespace
 
 void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& features,
-                        std::vector<Cluster>& out) {
+                        std::vector<Cluster>& out, std::vector<Cluster>* weak) {
   out.clear();
+  if (weak) weak->clear();
   pixels_.clear();
   pts_.clear();
   const int n_px = f.rows() * f.cols();
@@ -181,18 +184,30 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   count_.assign(pixels_.size(), 0);
   for (int l : label) count_[static_cast<std::size_t>(l)]++;
   slot_.assign(pixels_.size(), -1);
+  const int weak_min =
+      weak && p_.weak_min_points > 0 ? std::min(p_.weak_min_points, p_.min_points) : p_.min_points;
   for (std::size_t i = 0; i < pixels_.size(); i++) {
     const auto l = static_cast<std::size_t>(label[i]);
-    if (count_[l] < p_.min_points || count_[l] > p_.max_points) continue;
+    if (count_[l] < weak_min || count_[l] > p_.max_points) continue;
     if (by_area && voxels_[l] > max_voxels) continue;
+    std::vector<Cluster>& dst = count_[l] < p_.min_points ? *weak : out;
     if (slot_[l] < 0) {
-      slot_[l] = static_cast<int>(out.size());
-      out.emplace_back();
-      out.back().pixels.reserve(static_cast<std::size_t>(count_[l]));
+      slot_[l] = static_cast<int>(dst.size());
+      dst.emplace_back();
+      dst.back().pixels.reserve(static_cast<std::size_t>(count_[l]));
     }
-    out[static_cast<std::size_t>(slot_[l])].pixels.push_back(pixels_[i]);
+    dst[static_cast<std::size_t>(slot_[l])].pixels.push_back(pixels_[i]);
   }
   for (Cluster& c : out) computeClusterShape(f, c);
+  if (weak)  // the centroid only: the shape is computed for the few a track takes
+    for (Cluster& c : *weak) {
+      Eigen::Vector3d sum(0, 0, 0);
+      for (int px : c.pixels) {
+        const cv::Vec3f& p = f.pointAt(px);
+        sum += Eigen::Vector3d(p[0], p[1], p[2]);
+      }
+      c.centroid = sum / static_cast<double>(c.pixels.size());
+    }
   if (p_.max_length > 0)
     out.erase(std::remove_if(out.begin(), out.end(),
                              [&](const Cluster& c) { return c.length > p_.max_length; }),

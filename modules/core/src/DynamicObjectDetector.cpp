@@ -145,13 +145,17 @@ const DetectionResult& DynamicObjectDetector::process(
   r.timings.ego_motion = clock.lap();
 
   // III-B-2, Eq. (6)-(7): clusters of the foreground points.
-  clusterer_.cluster(frame, r.features, clusters_);
+  clusterer_.cluster(frame, r.features, clusters_, &weak_);
   r.timings.clustering = clock.lap();
 
-  // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association.
+  // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association;
+  // beyond the paper, a mover left without a cluster may find a weak one to seed from.
   tracks_.predict(r.ego_motion.motion, dt);
-  tracks_.update(frame_index_, clusters_,
-                 associator_.associate(centroidsOf(clusters_), tracks_.predicted()));
+  const std::vector<Eigen::Vector3d> predicted = tracks_.predicted();
+  const std::vector<int> cluster_to_track =
+      associator_.associate(centroidsOf(clusters_), predicted);
+  findWeakSeeds(predicted, cluster_to_track);
+  tracks_.update(frame_index_, clusters_, cluster_to_track);
   r.timings.association = clock.lap();
 
   // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window, outliers
@@ -187,6 +191,28 @@ double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
   return dt;
 }
 
+void DynamicObjectDetector::findWeakSeeds(const std::vector<Eigen::Vector3d>& predicted,
+                                          const std::vector<int>& cluster_to_track) {
+  weak_seeds_.clear();
+  if (weak_.empty()) return;
+  const std::vector<Track>& tracks = tracks_.tracks();
+  std::vector<char> matched(tracks.size(), 0);
+  for (int t : cluster_to_track)
+    if (t >= 0) matched[static_cast<std::size_t>(t)] = 1;
+  std::vector<int> movers;  // dynamic tracks without a cluster, and where they are expected
+  std::vector<Eigen::Vector3d> expected;
+  for (std::size_t t = 0; t < tracks.size(); t++)
+    if (tracks[t].dynamic && !matched[t]) {
+      movers.push_back(tracks[t].id);
+      expected.push_back(predicted[t]);
+    }
+  if (movers.empty()) return;
+  // The same gated association (Eq. 8-13), between the weak clusters and these tracks only.
+  const std::vector<int> a = associator_.associate(centroidsOf(weak_), expected);
+  for (std::size_t m = 0; m < weak_.size(); m++)
+    if (a[m] >= 0) weak_seeds_.emplace_back(movers[static_cast<std::size_t>(a[m])], m);
+}
+
 std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFrame& frame,
                                                                   double dt) {
   std::vector<std::vector<int>> seeds;
@@ -201,6 +227,16 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     seeds.push_back(c.pixels);
     seed_track_.push_back(tr.id);
     for (int px : c.pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
+  }
+  // Beyond the paper (§5): a dynamic track coasting through this sweep seeds from its weak
+  // cluster, if it found one (no observation: its state and decisions stay as they were).
+  for (const auto& [id, m] : weak_seeds_) {
+    const auto tr = std::find_if(tracks_.tracks().begin(), tracks_.tracks().end(),
+                                 [id = id](const Track& t) { return t.id == id; });
+    if (tr == tracks_.tracks().end() || tr->cluster >= 0 || !tr->dynamic) continue;
+    seeds.push_back(weak_[m].pixels);
+    seed_track_.push_back(id);
+    for (int px : weak_[m].pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
   if (grower_.params().keep_out_settled)  // beyond the paper: a mover beside one at rest (as §9)
     for (const Track& tr : tracks_.tracks())

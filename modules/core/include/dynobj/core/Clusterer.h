@@ -20,8 +20,12 @@ namespace dynobj::core {
 struct ClusteringParams : public StageParams {
   double horizontal_distance = 0.35;  ///< epsilon_xy [m]
   double vertical_distance = 0.6;     ///< epsilon_z [m]
-  int min_points = 4;                 ///< smaller clusters are dropped
-  int max_points = 100000;            ///< larger clusters are dropped (a safety bound in pixels)
+  int min_points = 4;                 ///< smaller clusters are dropped ...
+  /// ... unless they have at least this many points: such a weak cluster only seeds a track that
+  /// is already dynamic and found no cluster of min_points (a mover whose features dip below
+  /// min_points for a sweep; 0 or >= min_points = off). Beyond the paper, docs/algorithm.md §5
+  int weak_min_points = 2;
+  int max_points = 100000;  ///< larger clusters are dropped (a safety bound in pixels)
   double max_area = 20.0;   ///< [m^2] grid/kdtree with voxel > 0: clusters whose features fill
                             ///< more voxels than this area are dropped (facades, shelves); a car
                             ///< seen from 2 m fills ~10 m^2 (0 = no limit)
@@ -53,9 +57,11 @@ void computeClusterShape(const LidarFrame& frame, Cluster& c);
 class Clusterer {
  public:
   explicit Clusterer(const ClusteringParams& p = {});
-  /// Clusters the valid pixels set in `features` (255).
+  /// Clusters the valid pixels set in `features` (255): `out` the clusters of min_points or
+  /// more, `weak` (when given) those of weak_min_points up to min_points - 1, with their pixels
+  /// and centroid only (computeClusterShape() gives the rest).
   void cluster(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& features,
-               std::vector<Cluster>& out);
+               std::vector<Cluster>& out, std::vector<Cluster>* weak = nullptr);
 
  private:
   void clusterImage(const LidarFrame& frame, std::vector<int>& label);

@@ -116,8 +116,14 @@ class DynamicObjectDetector {
   /// Frame index, result and buffers reset for `frame`; returns the seconds since the last frame.
   double beginFrame(const LidarFrame& frame);
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
+  /// Beyond the paper (docs/algorithm.md §5): the dynamic tracks that `cluster_to_track` left
+  /// without a cluster, associated with the weak clusters (fewer than min_points features) near
+  /// their `predicted` centroids by the same gated association: weak_seeds_.
+  void findWeakSeeds(const std::vector<Eigen::Vector3d>& predicted,
+                     const std::vector<int>& cluster_to_track);
   /// Decides every associated track (movement, free space, hysteresis); the clusters of the
-  /// dynamic ones, also marked in result_.seeds (their track ids in seed_track_).
+  /// dynamic ones and the weak seeds of coasting dynamic tracks, also marked in result_.seeds
+  /// (their track ids in seed_track_).
   std::vector<std::vector<int>> dynamicSeeds(const LidarFrame& frame, double dt);
   /// Objects of the result, history for the next frame.
   void endFrame(const LidarFrame& frame, const std::vector<int>& grown);
@@ -137,7 +143,8 @@ class DynamicObjectDetector {
   FrameChain chain_;
 
   DetectionResult result_;
-  std::vector<Cluster> clusters_;
+  std::vector<Cluster> clusters_, weak_;  ///< this frame's clusters; weak ones (findWeakSeeds)
+  std::vector<std::pair<int, std::size_t>> weak_seeds_;  ///< (track id, index in weak_)
   cv::Mat_<std::uint8_t> exclude_, prev_dynamic_;
   cv::Mat_<int> owner_;
   std::vector<int> seed_track_;
