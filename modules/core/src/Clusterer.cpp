@@ -56,19 +56,26 @@ void ClusteringParams::validate() const {
   requireInRange("voxel", voxel, 0, 0.5 * std::min(horizontal_distance, vertical_distance));
 }
 
-void computeClusterShape(const LidarFrame& f, Cluster& c) {
+Eigen::Vector3d centroidOf(const LidarFrame& f, const std::vector<int>& pixels) {
   Eigen::Vector3d sum(0, 0, 0);
+  for (int px : pixels) {
+    const cv::Vec3f& p = f.pointAt(px);
+    sum += Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+  return sum / static_cast<double>(std::max<std::size_t>(1, pixels.size()));
+}
+
+void computeClusterShape(const LidarFrame& f, Cluster& c) {
   c.min = Eigen::Vector3d::Constant(1e18);
   c.max = Eigen::Vector3d::Constant(-1e18);
   for (int px : c.pixels) {
     const cv::Vec3f& p = f.pointAt(px);
     const Eigen::Vector3d q(p[0], p[1], p[2]);
-    sum += q;
     c.min = c.min.cwiseMin(q);
     c.max = c.max.cwiseMax(q);
   }
   const double n = static_cast<double>(std::max<std::size_t>(1, c.pixels.size()));
-  c.centroid = sum / n;
+  c.centroid = centroidOf(f, c.pixels);
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (int px : c.pixels) {
     const cv::Vec3f& p = f.pointAt(px);
@@ -199,15 +206,8 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
     dst[static_cast<std::size_t>(slot_[l])].pixels.push_back(pixels_[i]);
   }
   for (Cluster& c : out) computeClusterShape(f, c);
-  if (weak)  // the centroid only: the shape is computed for the few a track takes
-    for (Cluster& c : *weak) {
-      Eigen::Vector3d sum(0, 0, 0);
-      for (int px : c.pixels) {
-        const cv::Vec3f& p = f.pointAt(px);
-        sum += Eigen::Vector3d(p[0], p[1], p[2]);
-      }
-      c.centroid = sum / static_cast<double>(c.pixels.size());
-    }
+  if (weak)  // the centroid only: the association needs no more
+    for (Cluster& c : *weak) c.centroid = centroidOf(f, c.pixels);
   if (p_.max_length > 0)
     out.erase(std::remove_if(out.begin(), out.end(),
                              [&](const Cluster& c) { return c.length > p_.max_length; }),

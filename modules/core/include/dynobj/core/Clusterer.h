@@ -51,6 +51,9 @@ struct Cluster {
       end_b{0, 0, 0};  ///< the two ends along the main axis (z = centroid's)
 };
 
+/// Mean of the points at `pixels` (the origin when there are none).
+Eigen::Vector3d centroidOf(const LidarFrame& frame, const std::vector<int>& pixels);
+
 /// Fills centroid, bounds and PCA fields of `c` from its pixels.
 void computeClusterShape(const LidarFrame& frame, Cluster& c);
 
