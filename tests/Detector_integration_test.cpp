@@ -135,6 +135,37 @@ TEST(Detector, ResetForgetsEverything) {
   }
 }
 
+TEST(Detector, SecondThreadGivesTheSameResults) {
+  // [pipeline] threads = 2 runs the ego-motion beside ground, foreground and clustering: every
+  // frame's masks, ego-motion and objects must be those of threads = 1, bit for bit.
+  const sim::LidarSimulator simu(sim::Scenario::fromYamlFile(
+      std::string(DYNOBJ_SHARE_DIR) + "/scenarios/crossing.yaml", DYNOBJ_SHARE_DIR,
+      {{"frames", "30"}, {"sensor", "sensors/os0-64-512.ini"}}));
+  core::DetectorParams one, two;
+  one.pipeline.threads = 1;
+  two.pipeline.threads = 2;
+  core::DynamicObjectDetector a(one), b(two);
+  int dynamic = 0;
+  for (int k = 0; k < 30; k++) {
+    const auto f = simu.simulate(k).frame;
+    const core::DetectionResult ra = a.process(f).clone();
+    const core::DetectionResult& rb = b.process(f);
+    EXPECT_EQ(cv::countNonZero(ra.dynamic != rb.dynamic), 0) << "frame " << k;
+    EXPECT_EQ(cv::countNonZero(ra.features != rb.features), 0) << "frame " << k;
+    EXPECT_EQ(cv::countNonZero(ra.ground != rb.ground), 0) << "frame " << k;
+    EXPECT_TRUE(ra.ego_motion.motion.matrix() == rb.ego_motion.motion.matrix()) << "frame " << k;
+    EXPECT_EQ(ra.ego_motion.source, rb.ego_motion.source);
+    ASSERT_EQ(ra.objects.size(), rb.objects.size()) << "frame " << k;
+    for (std::size_t o = 0; o < ra.objects.size(); o++) {
+      EXPECT_EQ(ra.objects[o].id, rb.objects[o].id);
+      EXPECT_EQ(ra.objects[o].dynamic, rb.objects[o].dynamic);
+      EXPECT_EQ(ra.objects[o].points, rb.objects[o].points);
+    }
+    dynamic += cv::countNonZero(ra.dynamic);
+  }
+  EXPECT_GT(dynamic, 0);  // the comparison covered movers, not only empty masks
+}
+
 TEST(Detector, BehindMrptsPointCloudFilterInterface) {
   const sim::LidarSimulator simu(sim::Scenario::fromYamlFile(
       std::string(DYNOBJ_SHARE_DIR) + "/scenarios/hall.yaml", DYNOBJ_SHARE_DIR,

@@ -25,9 +25,17 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<int> warmup("", "warmup", "Frames run before timing starts", false, 10, "N", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
                                       "file.ini", cmd);
+  TCLAP::ValueArg<int> threads("", "threads",
+                               "[pipeline] threads: 1 = one core, 2 = the ego-motion on a second "
+                               "thread (default: the configuration's, 2)",
+                               false, 0, "1|2", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (frames.getValue() < 1 || warmup.getValue() < 0) {
     std::cerr << "dynobj-bench: error: --frames must be >= 1 and --warmup >= 0\n";
+    return 2;
+  }
+  if (threads.isSet() && (threads.getValue() < 1 || threads.getValue() > 2)) {
+    std::cerr << "dynobj-bench: error: --threads must be 1 or 2\n";
     return 2;
   }
 
@@ -40,15 +48,17 @@ int run(int argc, char** argv) {
   dynobj::eval::SimulatedFrames frames_in(sim);  // simulated in next(): not timed
   dynobj::mrptio::SequenceOptions so;
   so.detector = dynobj::apps::loadDetectorParams(config.getValue());
+  if (threads.isSet()) so.detector.pipeline.threads = threads.getValue();
   dynobj::core::TimingStats stats;
   dynobj::mrptio::SequenceRunner(frames_in, so).run([&](const dynobj::mrptio::FrameResult& fr) {
     if (fr.frame.index >= static_cast<std::size_t>(warmup.getValue()))
       stats.add(fr.detection->timings);  // only the detector's own stage timings count
   });
   const auto& s = sim.scenario();
-  std::printf("dynobj-bench: %s, %dx%d (%s), %zu frames after %d warm-up frames, one thread\n",
+  std::printf("dynobj-bench: %s, %dx%d (%s), %zu frames after %d warm-up frames, %d thread%s\n",
               s.name.c_str(), s.sensor.rows, s.sensor.cols, s.sensor.model.c_str(), stats.frames(),
-              warmup.getValue());
+              warmup.getValue(), so.detector.pipeline.threads,
+              so.detector.pipeline.threads > 1 ? "s" : "");
   std::fflush(stdout);
   stats.print(std::cout);
   return 0;

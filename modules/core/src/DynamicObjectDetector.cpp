@@ -46,6 +46,14 @@ DetectionResult DetectionResult::clone() const {
   return r;
 }
 
+void PipelineParams::visit(ParamVisitor& v) {
+  v.value("threads", threads);
+}
+
+void PipelineParams::validate() const {
+  requireInRange("threads", threads, 1, 2);
+}
+
 void DetectorParams::load(const mrpt::config::CConfigFileBase& c, const std::string& prefix) {
   DetectorParams p = *this;  // all or nothing: *this changes only if every section is valid
   p.forEachStage([&](const char* name, StageParams& stage) {
@@ -83,7 +91,8 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       grower_(params.region_growing),
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
-                   params.free_space.lookback + 2))) {
+                   params.free_space.lookback + 2))),
+      worker_(params.pipeline.threads > 1 && std::thread::hardware_concurrency() > 1) {
   params_.validate();
 }
 
@@ -130,23 +139,40 @@ const DetectionResult& DynamicObjectDetector::process(
   const double dt = beginFrame(frame);  // seconds since the previous frame
   DetectionResult& r = result_;
 
-  // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
-  ground_.segment(frame, r.ground);
-  r.timings.ground = clock.lap();
-
-  // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
-  const bool no_ground = params_.foreground.exclude_ground;
-  foreground_.extract(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(), r.features);
+  // III-A-2: the normalised intensity f of Eq. (2)-(4), which the ego-motion's features use too.
+  foreground_.normalize(frame);
   r.timings.foreground = clock.lap();
 
-  // III-B-1, Eq. (5): ego-motion between the previous frame and this one.
-  r.ego_motion = egoMotion(frame, external_motion);
-  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
-  r.timings.ego_motion = clock.lap();
+  // III-B-1, Eq. (5): ego-motion between the previous frame and this one. Nothing up to the
+  // association reads it: with [pipeline] threads = 2 it runs on the worker meanwhile.
+  worker_.start([&] {
+    StageClock ego_clock;
+    r.ego_motion = egoMotion(frame, external_motion);
+    r.timings.ego_motion = ego_clock.lap();
+  });
+  clock.lap();  // threads = 1: the ego-motion ran inside start(), timed on its own
 
-  // III-B-2, Eq. (6)-(7): clusters of the foreground points.
-  clusterer_.cluster(frame, r.features, clusters_, &weak_);
-  r.timings.clustering = clock.lap();
+  try {
+    // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
+    ground_.segment(frame, r.ground);
+    r.timings.ground = clock.lap();
+
+    // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
+    const bool no_ground = params_.foreground.exclude_ground;
+    foreground_.extractNormalized(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(),
+                                  r.features);
+    r.timings.foreground += clock.lap();
+
+    // III-B-2, Eq. (6)-(7): clusters of the foreground points.
+    clusterer_.cluster(frame, r.features, clusters_, &weak_);
+    r.timings.clustering = clock.lap();
+  } catch (...) {
+    worker_.drain();  // the ego-motion works on `frame` and `r`: finished before they go
+    throw;
+  }
+  worker_.wait();
+  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
+  clock.lap();  // the wait for the ego-motion: in no stage's own time
 
   // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association;
   // beyond the paper, a mover left without a cluster may find a weak one to seed from.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "dynobj/core/Config.h"
 
@@ -104,6 +105,14 @@ const cv::Mat_<float>& ForegroundExtractor::normalize(const LidarFrame& frame) {
 void ForegroundExtractor::extract(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& exclude,
                                   cv::Mat_<std::uint8_t>& features) {
   normalize(frame);
+  extractNormalized(frame, exclude, features);
+}
+
+void ForegroundExtractor::extractNormalized(const LidarFrame& frame,
+                                            const cv::Mat_<std::uint8_t>& exclude,
+                                            cv::Mat_<std::uint8_t>& features) {
+  if (f_.size() != frame.range.size())
+    throw std::logic_error("ForegroundExtractor::extractNormalized: normalize(frame) first");
   frame.valid.convertTo(v_, CV_32F, 1.0 / 255.0);
   // Normalised convolution: h = (f * g) / (valid * g), so no-returns do not act as dark pixels.
   blurWrapped(f_, p_, vert_, padded_, scratch_, blurred_);

@@ -65,6 +65,13 @@ TEST(DetectorParams, BadValuesNameSectionAndKey) {
     EXPECT_NE(std::string(e.what()).find("[region_growing] distance"), std::string::npos)
         << e.what();
   }
+  ::mrpt::config::CConfigFileMemory m3("[pipeline]\nthreads = 3\n");
+  try {
+    p.load(m3);
+    FAIL();
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("[pipeline] threads"), std::string::npos) << e.what();
+  }
 }
 
 #include <dynobj/core/TimingStats.h>

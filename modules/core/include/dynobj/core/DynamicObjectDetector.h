@@ -22,9 +22,20 @@
 #include "dynobj/core/LidarFrame.h"
 #include "dynobj/core/MovementAnalyzer.h"
 #include "dynobj/core/RegionGrower.h"
+#include "dynobj/core/StageWorker.h"
 #include "dynobj/core/TrackManager.h"
 
 namespace dynobj::core {
+
+/// How the detector runs; no effect on its results (the same masks, byte for byte).
+struct PipelineParams : public StageParams {
+  /// 1: every stage on the caller's thread. 2: the ego-motion (III-B-1, and its refinement) on a
+  /// second thread, beside the ground, foreground and clustering stages, which do not read it.
+  int threads = 2;
+
+  void visit(ParamVisitor& v) override;
+  void validate() const override;
+};
 
 /// Every stage's parameters, one INI section per stage: <prefix><name> for each (name, stage) of
 /// forEachStage(), the one list of the sections.
@@ -40,6 +51,7 @@ struct DetectorParams {
   TrackingParams tracking;
   RegionGrowingParams region_growing;
   HindsightParams hindsight;  ///< used by offline runs (SequenceRunner), not by the detector
+  PipelineParams pipeline;
 
   /// Calls f(section name, stage parameters) for every stage, in pipeline order.
   template <class F>
@@ -55,6 +67,7 @@ struct DetectorParams {
     f("tracking", tracking);
     f("region_growing", region_growing);
     f("hindsight", hindsight);
+    f("pipeline", pipeline);
   }
   template <class F>
   void forEachStage(F&& f) const {
@@ -82,6 +95,8 @@ struct TrackedObject {
 struct StageTimings {
   double foreground = 0, ego_motion = 0, clustering = 0, association = 0, movement = 0, ground = 0,
          region_growing = 0, hindsight = 0, total = 0;  ///< [ms]; hindsight: offline runs
+  // Each stage's own time. With [pipeline] threads = 2 the ego-motion runs while the ground,
+  // foreground and clustering stages do: the total (wall time) is then less than their sum.
 };
 
 struct DetectionResult {
@@ -141,6 +156,7 @@ class DynamicObjectDetector {
   TrackManager tracks_;
   RegionGrower grower_;
   FrameChain chain_;
+  StageWorker worker_;  ///< runs egoMotion() ([pipeline] threads)
 
   DetectionResult result_;
   std::vector<Cluster> clusters_, weak_;  ///< this frame's clusters; weak ones (findWeakSeeds)

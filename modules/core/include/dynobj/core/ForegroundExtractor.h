@@ -40,6 +40,10 @@ class ForegroundExtractor {
   /// pixels neither count as dark background nor create features at their borders.
   void extract(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& exclude,
                cv::Mat_<std::uint8_t>& features);
+  /// extract() on the image of the last normalize(frame), which it only reads (the ego-motion
+  /// may read it at the same time).
+  void extractNormalized(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& exclude,
+                         cv::Mat_<std::uint8_t>& features);
 
   /// The last normalised intensity (after extract() or normalize()).
   const cv::Mat_<float>& normalized() const { return f_; }
