@@ -75,14 +75,19 @@ void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, in
 }
 
 bool Hindsight::movingAt(const std::vector<Held>& held, std::size_t j, int id,
-                         const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk) const {
+                         const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk,
+                         double& out_speed) const {
   // Its speed out of this sweep, to the next later sweep that saw it, against its speed into it
   // over the kRestSteps sweeps before (each in the newest frame's coordinates). Standing here
   // and starting after it: every step in is slow. Moving here: the steps in are about as fast
   // as the step out (an accelerating car one sweep after it set off: 1/3 of it), and a centroid
-  // that lags for one sweep (a view that changes) does not make a rest of two.
+  // that lags for one sweep (a view that changes) does not make a rest of two. The speed out is
+  // the fastest met so far going back: once a sweep at rest was flagged (its centroid drifts as
+  // the view changes), the step out of the sweep before it is that drift, not the start.
   const auto& [j1, p1] = path_.back();
-  const double out = (p1 - here).head<2>().norm() / secondsBetween(held[j], held[j1], j1 - j);
+  out_speed =
+      std::max(out_speed, (p1 - here).head<2>().norm() / secondsBetween(held[j], held[j1], j1 - j));
+  const double out = out_speed;
   Eigen::Isometry3d T_ik = T_jk;
   Eigen::Vector3d later = here;
   for (std::size_t i = j; i > 0 && j - i < kRestSteps; i--) {
@@ -117,7 +122,8 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
     Eigen::Isometry3d T_jk = Eigen::Isometry3d::Identity();
     int run = 1;  // sweeps the track has been seen dynamic in, up to this one
     bool revising = false;
-    path_.clear();  // where the track was seen, in frame k's coordinates, newest first
+    double out_speed = 0;  // start_check: the fastest speed out met going back
+    path_.clear();         // where the track was seen, in frame k's coordinates, newest first
     path_.emplace_back(k, o.centroid);
     for (std::size_t j = k; j-- > 0;) {
       T_jk = held[j + 1].result->ego_motion.motion * T_jk;
@@ -149,7 +155,8 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
       const double way = (here - path_[to].second).head<2>().norm();
       if (way < p_.min_speed * secondsBetween(held[j], held[j2], j2 - j)) break;  // not moving yet
       if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;      // merged then
-      if (p_.start_check && !movingAt(held, j, o.id, here, T_jk)) break;          // about to start
+      if (p_.start_check && !movingAt(held, j, o.id, here, T_jk, out_speed))
+        break;  // about to start
       const LidarFrame& f = *held[j].frame;
       keepOutSettled(r, f, o.id);
       const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_)[0];

@@ -211,6 +211,24 @@ TEST(Hindsight, DoesNotFlagTheLastSweepBeforeAStart) {
   for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(lagged.flagged(j), lagged.post[j]) << "frame " << j;
 }
 
+TEST(Hindsight, AFlaggedSweepAtRestDoesNotLowerTheBarForTheOneBeforeIt) {
+  // At rest in frames 0-5 while its centroid drifts 0.02 m a sweep (its view changes), jumping
+  // 0.06 m into frame 5; off at 1.5 m/s from frame 6; dynamic in frames 8-9. Frame 5 came in at
+  // 0.6 m/s, over a quarter of 1.5: flagged. Frame 4 left at 0.6 m/s (the jump) and came in at
+  // 0.2 m/s: against the jump it moved, against the start (1.5 m/s, the fastest speed out met
+  // going back) it stood: not flagged.
+  const std::vector<double> y{-1.0, -0.98, -0.96, -0.94, -0.92, -0.86, -0.71, -0.56, -0.41, -0.26};
+  std::vector<Eigen::Vector2d> at;
+  for (double v : y) at.emplace_back(4, v);
+  Sequence seq(at, forward(0), 2);
+  HindsightParams p;
+  p.min_speed = 0.9;
+  p.min_dynamic = 0.2;
+  p.speed_window = 0.2;
+  Hindsight(p).revise(seq.held());
+  for (std::size_t j = 0; j < 8; j++) EXPECT_EQ(seq.flagged(j).empty(), j < 5) << "frame " << j;
+}
+
 TEST(Hindsight, StopsAtAClusterThatHadMergedWithSomethingElse) {
   // In frame 2 the walker's cluster took in a bench: its box 1.5 m longer, a 2.18 m diagonal
   // against the object's 0.85 m (allowed: 1.5 x 0.85 + 0.5 = 1.77 m).

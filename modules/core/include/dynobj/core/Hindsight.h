@@ -79,8 +79,9 @@ class Hindsight {
   void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);
   /// start_check for the track `id` at held frame j (position `here`, in the newest frame's
   /// coordinates, T_jk their transform into frame j), path_ holding its later positions.
+  /// `out_speed`: the fastest speed out of a sweep this revision has met so far [m/s], updated.
   bool movingAt(const std::vector<Held>& held, std::size_t j, int id, const Eigen::Vector3d& here,
-                const Eigen::Isometry3d& T_jk) const;
+                const Eigen::Isometry3d& T_jk, double& out_speed) const;
   std::vector<std::pair<std::size_t, Eigen::Vector3d>> path_;  ///< revise(): frame, position
 };
 
