@@ -50,6 +50,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("start_check", start_check);
   v.value("max_growth", max_growth);
   v.value("settle_distance", settle_distance);
+  v.value("stop_check", stop_check);
 }
 
 void HindsightParams::validate() const {
@@ -174,27 +175,48 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
   return added;
 }
 
+bool Hindsight::stoppedAt(const std::vector<Held>& held, const TrackedObject& o) const {
+  // The mirror of start_check: on each of the kRestSteps steps out of this sweep (to the next
+  // later sweeps that saw it, path_), slower than a quarter of the track's speed (its Kalman
+  // velocity, which still has the walk in it for a few sweeps after a stop): it stood here.
+  if (path_.size() < kRestSteps + 1 || path_[1].first != 1) return false;  // seen next: a verdict
+  const double ref = o.velocity.norm();
+  for (std::size_t s = 0; s < kRestSteps; s++) {
+    const auto& [ja, pa] = path_[s];
+    const auto& [jb, pb] = path_[s + 1];
+    if ((pb - pa).head<2>().norm() / secondsBetween(held[ja], held[jb], jb - ja) >=
+        kStartRatio * ref)
+      return false;
+  }
+  return true;
+}
+
 int Hindsight::settle(const std::vector<Held>& held) {
-  if (p_.settle_distance <= 0 || held.size() < 2) return 0;
+  if ((p_.settle_distance <= 0 && !p_.stop_check) || held.size() < 2) return 0;
   const auto start = std::chrono::steady_clock::now();
   DetectionResult& first = *held[0].result;
   int unflagged = 0;
   for (TrackedObject& o : first.objects) {
     if (!o.dynamic) continue;
-    // How far the track gets from here in the later held frames that see it, its positions
-    // carried into the first frame (T_{0<-j}); no verdict across a failed ego-motion.
+    // Where the track is in the later held frames that see it, carried into the first frame
+    // (T_{0<-j}); no verdict across a failed ego-motion.
     Eigen::Isometry3d T_0j = Eigen::Isometry3d::Identity();
     double way = -1, span = 0;
+    path_.clear();  // the first frame and the later ones that see the track, oldest first
+    path_.emplace_back(0, o.centroid);
     for (std::size_t j = 1; j < held.size(); j++) {
       const DetectionResult& r = *held[j].result;
       if (!r.ego_motion.ok) break;
       T_0j = T_0j * r.ego_motion.motion;
       const TrackedObject* later = findTrack(r.objects, o.id);
       if (!later) continue;
-      way = std::max(way, (T_0j * later->centroid - o.centroid).head<2>().norm());
+      path_.emplace_back(j, T_0j * later->centroid);
+      way = std::max(way, (path_.back().second - o.centroid).head<2>().norm());
       span = secondsBetween(held[0], held[j], j);
     }
-    if (way < 0 || span < 0.5 * p_.lag - 1e-9 || way >= p_.settle_distance) continue;
+    const bool settled = p_.settle_distance > 0 && way >= 0 && span >= 0.5 * p_.lag - 1e-9 &&
+                         way < p_.settle_distance;
+    if (!settled && !(p_.stop_check && stoppedAt(held, o))) continue;
     o.dynamic = false;
     unflagged++;
   }

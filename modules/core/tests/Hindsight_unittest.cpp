@@ -337,6 +337,48 @@ TEST(Hindsight, SettleJudgesInTheWorldAndNotAcrossAFailedEgoMotion) {
   EXPECT_EQ(failed.flagged(0), failed.post[0]);
 }
 
+/// A walker at 1.5 m/s (its track's speed too, in every frame), flagged in every frame, at the
+/// positions `at` (sensor at rest); the frames in which settle() unflags it, each judged as the
+/// oldest held frame (the later ones held behind it, as SequenceRunner does).
+std::vector<std::size_t> unflaggedOnStop(const std::vector<double>& y, bool stop_check) {
+  std::vector<Eigen::Vector2d> at;
+  for (double v : y) at.emplace_back(4, v);
+  Sequence seq(at, forward(0), y.size());
+  for (DetectionResult& r : seq.results) {
+    r.ego_motion.ok = true;
+    r.objects[0].velocity = Eigen::Vector2d(0, 1.5);
+  }
+  HindsightParams p;
+  p.stop_check = stop_check;
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k + 1 < y.size(); k++) {
+    std::vector<Hindsight::Held> held = seq.held();
+    held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(k));
+    if (Hindsight(p).settle(held) > 0) {
+      out.push_back(k);
+      EXPECT_TRUE(seq.flagged(k).empty()) << "frame " << k;
+      EXPECT_FALSE(seq.results[k].objects[0].dynamic);
+    } else {
+      EXPECT_EQ(seq.flagged(k), seq.post[k]) << "frame " << k;
+    }
+  }
+  return out;
+}
+
+TEST(Hindsight, StopCheckUnflagsTheSweepsWhereAWalkerHadStopped) {
+  // Walks into frame 3 (0.15 m per frame), stands from there: frames 3-6 stood, the two steps
+  // out of each slower than a quarter of 1.5 m/s; frame 7 has one step left (no verdict).
+  const std::vector<double> stops{-1.2, -1.05, -0.9, -0.75, -0.75, -0.75, -0.75, -0.75, -0.75};
+  EXPECT_EQ(unflaggedOnStop(stops, true), (std::vector<std::size_t>{3, 4, 5, 6}));
+  EXPECT_TRUE(unflaggedOnStop(stops, false).empty());
+  // A pause of one step is no stop: frame 3 steps out at 0 then at 1.5 m/s; motion below a
+  // quarter of its speed (a creep of 0.03 m per frame, 0.3 m/s) counts as a stop.
+  EXPECT_EQ(unflaggedOnStop({-1.2, -1.05, -0.9, -0.75, -0.75, -0.6, -0.45, -0.3}, true),
+            (std::vector<std::size_t>{}));
+  EXPECT_EQ(unflaggedOnStop({-1.2, -1.05, -0.9, -0.87, -0.84, -0.81, -0.78}, true),
+            (std::vector<std::size_t>{2, 3, 4}));
+}
+
 TEST(Hindsight, SettleDistanceIsValidated) {
   HindsightParams p;
   p.settle_distance = -0.1;

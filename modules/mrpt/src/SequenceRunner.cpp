@@ -96,7 +96,7 @@ void SequenceRunner::revise(const std::string& sensor_label, bool last) {
 }
 
 void SequenceRunner::settle(const std::string& sensor_label) {
-  if (hindsight_.params().settle_distance > 0) hindsight_.settle(heldOf(sensor_label));
+  hindsight_.settle(heldOf(sensor_label));  // settle_distance, stop_check
 }
 
 void SequenceRunner::release(const std::function<void(const FrameResult&)>& on_frame, bool all) {

@@ -6,8 +6,9 @@
 // `min_dynamic` seconds, its clusters in the held frames before that are flagged too (grown as in
 // Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to
 // where it was `speed_window` later at least `min_speed` fast and its cluster was not much larger
-// than the object (a walker merged with a bench); before a frame is written, an object whose
-// track then got nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
+// than the object (a walker merged with a bench) and it was not standing there (start_check);
+// before a frame is written, an object that stood there (stop_check) or whose track then got
+// nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
 // See docs/algorithm.md §9.
 #pragma once
 
@@ -23,6 +24,7 @@
 namespace dynobj::core {
 
 struct DetectionResult;
+struct TrackedObject;
 
 struct HindsightParams : public StageParams {
   double lag = 1.0;           ///< [s] how long an offline run holds a frame; 0 = online (the paper)
@@ -34,8 +36,12 @@ struct HindsightParams : public StageParams {
   /// the sweeps before it, its speed was below a quarter of its speed to the next sweep that saw
   /// it (a walker who starts just after a sweep; false = flag it, as before Session 14)
   bool start_check = true;
-  double max_growth = 0.5;     ///< [m] an earlier cluster whose horizontal extent (box diagonal)
-                               ///< exceeds 1.5 x the object's by more had merged: stop
+  double max_growth = 0.5;  ///< [m] an earlier cluster whose horizontal extent (box diagonal)
+                            ///< exceeds 1.5 x the object's by more had merged: stop
+  /// a flagged object is unflagged, before its frame is written, when it stood there: on each of
+  /// the two steps to the next sweeps that saw it, slower than a quarter of its track's speed (a
+  /// walker who stopped just before the sweep; false = keep it flagged, as before Session 17)
+  bool stop_check = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -61,7 +67,9 @@ class Hindsight {
   long revise(const std::vector<Held>& held, bool last = false);
 
   /// `held`: one sensor's held frames, oldest first; the oldest is about to be written. Unflags
-  /// there the dynamic objects whose tracks, seen from that frame, get no farther than
+  /// there the dynamic objects that stood there (stop_check: the two steps to the next sweeps
+  /// that see its track, the first of them the next held frame, each slower than a quarter of
+  /// its track's speed), and those whose tracks, seen from that frame, get no farther than
   /// settle_distance from where they are in any later held frame, when the last of those is at
   /// least lag / 2 later: a mover must get somewhere (swaying foliage, a walker who stopped).
   /// Returns the objects unflagged.
@@ -82,7 +90,10 @@ class Hindsight {
   /// `out_speed`: the fastest speed out of a sweep this revision has met so far [m/s], updated.
   bool movingAt(const std::vector<Held>& held, std::size_t j, int id, const Eigen::Vector3d& here,
                 const Eigen::Isometry3d& T_jk, double& out_speed) const;
-  std::vector<std::pair<std::size_t, Eigen::Vector3d>> path_;  ///< revise(): frame, position
+  /// stop_check for the object `o` of the first held frame, path_ holding where its track was seen
+  /// from then on (frames 0, ...; positions in frame 0's coordinates).
+  bool stoppedAt(const std::vector<Held>& held, const TrackedObject& o) const;
+  std::vector<std::pair<std::size_t, Eigen::Vector3d>> path_;  ///< frame, position
 };
 
 }  // namespace dynobj::core
