@@ -44,7 +44,7 @@ void StageWorker::wait() {
   std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
   if (thread_.joinable()) {
     lock.lock();
-    cv_.wait(lock, [this] { return !task_ && !busy_; });
+    cv_.wait(lock, [this] { return !busy_; });  // busy_ holds from start() to the task's end
   }
   busy_ = false;
   if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
