@@ -2,6 +2,7 @@
 #include "dynobj/core/ClusterAssociator.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "dynobj/core/Config.h"
 #include "dynobj/core/Hungarian.h"
@@ -10,38 +11,54 @@ namespace dynobj::core {
 
 void AssociationParams::visit(ParamVisitor& v) {
   v.value("gate_distance", gate_distance);
+  v.value("new_track_speed", new_track_speed);
+  v.value("new_track_length", new_track_length);
 }
 
 void AssociationParams::validate() const {
   requirePositive("gate_distance", gate_distance);
+  requireInRange("new_track_speed", new_track_speed, 0, 100);
+  requireInRange("new_track_length", new_track_length, 0, 100);
 }
 
 ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {
   p_.validate();
 }
 
+double ClusterAssociator::gate(double unknown_velocity_seconds, double length) const {
+  if (length < p_.new_track_length) return p_.gate_distance;
+  return p_.gate_distance + p_.new_track_speed * std::max(0.0, unknown_velocity_seconds);
+}
+
 Eigen::MatrixXd ClusterAssociator::costMatrix(const std::vector<Eigen::Vector3d>& current,
-                                              const std::vector<Eigen::Vector3d>& predicted) const {
+                                              const std::vector<Eigen::Vector3d>& predicted,
+                                              const std::vector<double>& gates) const {
   const auto M = static_cast<Eigen::Index>(current.size());
   const auto N = static_cast<Eigen::Index>(predicted.size());
-  const double dmax = p_.gate_distance;
   Eigen::MatrixXd D(M + N, N + M);
+  const double dmax = p_.gate_distance;
   D.topRightCorner(M, M).setConstant(2 * dmax);    // current cluster -> dummy: a new object
   D.bottomLeftCorner(N, N).setConstant(2 * dmax);  // dummy -> track: the track is not seen
   D.bottomRightCorner(N, M).setZero();             // dummy -> dummy
-  for (Eigen::Index m = 0; m < M; m++)
-    for (Eigen::Index n = 0; n < N; n++) {
-      const double d =
-          (current[static_cast<std::size_t>(m)] - predicted[static_cast<std::size_t>(n)]).norm();
-      D(m, n) = d <= dmax ? d : forbidden();  // Eq. (9)
+  for (Eigen::Index n = 0; n < N; n++) {
+    const auto j = static_cast<std::size_t>(n);
+    const double gate = gates.empty() ? dmax : gates[j];
+    for (Eigen::Index m = 0; m < M; m++) {
+      const double d = (current[static_cast<std::size_t>(m)] - predicted[j]).norm();
+      D(m, n) = d <= gate ? d : forbidden();  // Eq. (9), with this track's gate
     }
+  }
   return D;
 }
 
 std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>& current,
-                                              const std::vector<Eigen::Vector3d>& predicted) const {
+                                              const std::vector<Eigen::Vector3d>& predicted,
+                                              const std::vector<double>& gates) const {
   std::vector<int> out(current.size(), -1);
   if (current.empty() || predicted.empty()) return out;
+  if (!gates.empty() && gates.size() != predicted.size())
+    throw std::invalid_argument("ClusterAssociator: one gate per predicted track");
+  const auto gateOf = [&](std::size_t n) { return gates.empty() ? p_.gate_distance : gates[n]; };
   // Pairs beyond d_max are forbidden (Eq. 9), so the assignment splits into independent
   // problems, one per connected component of the "within d_max" graph. Solving each one with its
   // own dummies (Eq. 10-13) gives exactly the optimum of the whole matrix, at a fraction of the
@@ -53,10 +70,11 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  const double d2max = p_.gate_distance * p_.gate_distance;
-  for (std::size_t m = 0; m < M; m++)
-    for (std::size_t n = 0; n < N; n++)
+  for (std::size_t n = 0; n < N; n++) {
+    const double d2max = gateOf(n) * gateOf(n);
+    for (std::size_t m = 0; m < M; m++)
       if ((current[m] - predicted[n]).squaredNorm() <= d2max) parent[find(m)] = find(M + n);
+  }
   // Group rows and columns by component: (root, index) pairs sorted by root (two allocations,
   // not one per component).
   std::vector<std::pair<std::size_t, std::size_t>> rows, cols;
@@ -67,6 +85,7 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
   std::sort(rows.begin(), rows.end());
   std::sort(cols.begin(), cols.end());
   std::vector<Eigen::Vector3d> cur, pred;
+  std::vector<double> gate;
   std::size_t r0 = 0, c0 = 0;
   while (r0 < rows.size()) {
     const std::size_t root = rows[r0].first;
@@ -78,12 +97,17 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
     if (c1 > c0) {  // clusters with candidate tracks: solve this component (Eq. 10-13)
       cur.clear();
       pred.clear();
+      gate.clear();
       for (std::size_t i = r0; i < r1; i++) cur.push_back(current[rows[i].second]);
-      for (std::size_t j = c0; j < c1; j++) pred.push_back(predicted[cols[j].second]);
-      const std::vector<int> a = solveAssignment(costMatrix(cur, pred));
+      for (std::size_t j = c0; j < c1; j++) {
+        pred.push_back(predicted[cols[j].second]);
+        gate.push_back(gateOf(cols[j].second));
+      }
+      const std::vector<int> a = solveAssignment(costMatrix(cur, pred, gate));
       for (std::size_t i = 0; i < cur.size(); i++)
         if (a[i] >= 0 && a[i] < static_cast<int>(pred.size()) &&
-            (cur[i] - pred[static_cast<std::size_t>(a[i])]).norm() <= p_.gate_distance)
+            (cur[i] - pred[static_cast<std::size_t>(a[i])]).norm() <=
+                gate[static_cast<std::size_t>(a[i])])
           out[rows[r0 + i].second] =
               static_cast<int>(cols[c0 + static_cast<std::size_t>(a[i])].second);
     }

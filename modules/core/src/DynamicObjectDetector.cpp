@@ -178,8 +178,16 @@ const DetectionResult& DynamicObjectDetector::process(
   // beyond the paper, a mover left without a cluster may find a weak one to seed from.
   tracks_.predict(r.ego_motion.motion, dt);
   const std::vector<Eigen::Vector3d> predicted = tracks_.predicted();
+  std::vector<double> gates;  // beyond the paper: wider for a track with no velocity yet
+  gates.reserve(predicted.size());
+  for (const Track& t : tracks_.tracks()) {
+    const WindowEntry& seen = t.window.back();
+    gates.push_back(t.window.size() < 2
+                        ? associator_.gate((t.missed + 1) * dt, (seen.end_b - seen.end_a).norm())
+                        : associator_.gate(0, 0));
+  }
   const std::vector<int> cluster_to_track =
-      associator_.associate(centroidsOf(clusters_), predicted);
+      associator_.associate(centroidsOf(clusters_), predicted, gates);
   findWeakSeeds(predicted, cluster_to_track);
   tracks_.update(frame_index_, clusters_, cluster_to_track);
   r.timings.association = clock.lap();

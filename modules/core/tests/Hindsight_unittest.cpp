@@ -59,6 +59,11 @@ struct Sequence {
       TrackedObject o;
       o.id = kTrack;
       o.centroid = Eigen::Vector3d(at[j].x(), at[j].y(), 0);
+      // The tracker's velocity, in the world (through the ego-motion): the step into this frame
+      // (out of it for the first frame).
+      const std::size_t a = j == 0 ? 0 : j - 1, b = std::min(a + 1, at.size() - 1);
+      const Eigen::Vector3d from = motion.inverse() * Eigen::Vector3d(at[a].x(), at[a].y(), 0);
+      o.velocity = b > a ? Eigen::Vector2d((at[b] - from.head<2>()) / 0.1) : Eigen::Vector2d(0, 0);
       o.box_min = o.centroid - Eigen::Vector3d(0.3, 0.3, 1);
       o.box_max = o.centroid + Eigen::Vector3d(0.3, 0.3, 0.8);
       for (int px : post.back())
@@ -209,6 +214,37 @@ TEST(Hindsight, DoesNotFlagTheLastSweepBeforeAStart) {
   Sequence lagged(lag, forward(0));
   Hindsight().revise(lagged.held());
   for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(lagged.flagged(j), lagged.post[j]) << "frame " << j;
+}
+
+TEST(Hindsight, AtTheOldestHeldSweepsTheTracksOwnSpeedThenDecides) {
+  // A walker who stood until frame 0 and set off from there at 1.5 m/s (dynamic in frames 4-5).
+  // Frame 0 has no step in within the held frames: the speed of its track (50 sweeps old) then
+  // decides (0 m/s: standing, not flagged). Frame 1 came in at 1.5 m/s: flagged.
+  std::vector<Eigen::Vector2d> at;
+  for (int j = 0; j <= 5; j++) at.emplace_back(4, -1.0 + 0.15 * j);
+  Sequence seq(at, forward(0), 2);
+  seq.results[0].objects[0].velocity.setZero();
+  seq.results[0].objects[0].age = 50;
+  HindsightParams p;
+  p.min_speed = 0.9;
+  p.min_dynamic = 0.2;
+  p.speed_window = 0.2;
+  Hindsight(p).revise(seq.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(seq.flagged(j).empty(), j == 0) << "frame " << j;
+  // The same frame 0 with the tracker moving then (a walk going on before the held frames):
+  // flagged, as before this check.
+  Sequence moving(at, forward(0), 2);
+  moving.results[0].objects[0].velocity = Eigen::Vector2d(0, 1.5);
+  moving.results[0].objects[0].age = 50;
+  Hindsight(p).revise(moving.held());
+  EXPECT_EQ(moving.flagged(0), moving.post[0]);
+  // A track born two sweeps before has no speed to tell (the first sweeps of a recording):
+  // flagged, as before this check.
+  Sequence young(at, forward(0), 2);
+  young.results[0].objects[0].velocity.setZero();
+  young.results[0].objects[0].age = 2;
+  Hindsight(p).revise(young.held());
+  EXPECT_EQ(young.flagged(0), young.post[0]);
 }
 
 TEST(Hindsight, AFlaggedSweepAtRestDoesNotLowerTheBarForTheOneBeforeIt) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Association (Eq. 8-13), movement analysis and outlier rejection (Eq. 14-23), tracks.
 #include <dynobj/core/ClusterAssociator.h>
+#include <dynobj/core/Config.h>
 #include <dynobj/core/Hungarian.h>
 #include <dynobj/core/MovementAnalyzer.h>
 #include <dynobj/core/TrackManager.h>
@@ -64,6 +65,40 @@ TEST(ClusterAssociator, ComponentsMatchTheWholeProblem) {
     const std::vector<int> best = solveAssignment(D);
     EXPECT_NEAR(whole, assignmentCost(D, best), 1e-9) << "trial " << trial;
   }
+}
+
+TEST(ClusterAssociator, ATrackWithoutVelocityGetsAWiderGateWhenItIsVehicleSized) {
+  // A car at 11 m/s, seen once, is 1.1 m on at the next 10 Hz sweep: beyond d_max = 1 m.
+  AssociationParams p;
+  p.gate_distance = 1.0;
+  p.new_track_speed = 15;
+  p.new_track_length = 1.0;
+  const ClusterAssociator a(p);
+  EXPECT_DOUBLE_EQ(a.gate(0, 4.5), 1.0);    // a velocity known: d_max
+  EXPECT_DOUBLE_EQ(a.gate(0.1, 4.5), 2.5);  // a car seen once, 0.1 s ago
+  EXPECT_DOUBLE_EQ(a.gate(0.2, 4.5), 4.0);  // ... 0.2 s ago
+  EXPECT_DOUBLE_EQ(a.gate(0.1, 0.5), 1.0);  // a walker seen once: d_max
+  EXPECT_DOUBLE_EQ(a.gate(-1, 4.5), 1.0);
+  EXPECT_EQ(a.associate({V3(1.1, 0, 0)}, {V3(0, 0, 0)}), (std::vector<int>{-1}));
+  EXPECT_EQ(a.associate({V3(1.1, 0, 0)}, {V3(0, 0, 0)}, {a.gate(0.1, 4.5)}), (std::vector<int>{0}));
+  EXPECT_EQ(a.associate({V3(2.6, 0, 0)}, {V3(0, 0, 0)}, {a.gate(0.1, 4.5)}),
+            (std::vector<int>{-1}));
+  // Costs stay distances (Eq. 10): a cluster 0.9 m from a track with a velocity goes to it, not to
+  // a wide-gated one 1.2 m away (costs in units of each gate, 0.9 against 0.48, would not).
+  const auto D = a.costMatrix({V3(0, 0, 0)}, {V3(0.9, 0, 0), V3(-1.2, 0, 0)}, {1.0, 2.5});
+  EXPECT_DOUBLE_EQ(D(0, 0), 0.9);
+  EXPECT_DOUBLE_EQ(D(0, 1), 1.2);
+  EXPECT_DOUBLE_EQ(D(0, 2), 2.0);  // cluster -> dummy: 2 d_max
+  EXPECT_EQ(a.associate({V3(0, 0, 0)}, {V3(0.9, 0, 0), V3(-1.2, 0, 0)}, {1.0, 2.5}),
+            (std::vector<int>{0}));
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(1.5, 0, 0)}, {V3(0.5, 0, 0), V3(-0.4, 0, 0)}, {1.0, 2.5}),
+            (std::vector<int>{1, 0}));
+  // 0 = the paper: d_max for every track.
+  p.new_track_speed = 0;
+  EXPECT_DOUBLE_EQ(ClusterAssociator(p).gate(0.1, 4.5), 1.0);
+  EXPECT_THROW(a.associate({V3(0, 0, 0)}, {V3(0, 0, 0)}, {1.0, 1.0}), std::invalid_argument);
+  p.new_track_length = -1;
+  EXPECT_THROW(p.validate(), ParameterError);
 }
 
 namespace {

@@ -12,6 +12,14 @@ namespace dynobj::core {
 
 struct AssociationParams : public StageParams {
   double gate_distance = 1.0;  ///< d_max [m]: farther pairs cost "infinity" (Eq. 9)
+  /// [m/s] beyond the paper: a track seen once has no velocity yet, so its gate is
+  /// d_max + this x the seconds since it was seen (a car at 11 m/s moves 1.1 m per 10 Hz sweep:
+  /// with d_max alone its every sweep starts a new track). 0 = the paper's d_max for every track
+  double new_track_speed = 15.0;
+  /// [m] ... for a cluster at least this long (along its main axis) when seen: only vehicles are
+  /// that fast, and a walker's first cluster linked to clutter 2 m away starts its window with
+  /// a jump (its detection then waits until the jump leaves the window)
+  double new_track_length = 1.0;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -21,15 +29,24 @@ class ClusterAssociator {
  public:
   explicit ClusterAssociator(const AssociationParams& p = {});
 
+  /// The gate of a track [m]: d_max, widened by new_track_speed x `unknown_velocity_seconds`
+  /// (the seconds since a track without a velocity was seen; 0 for a track with one) when the
+  /// cluster it was seen with is at least new_track_length long (`length` [m]).
+  double gate(double unknown_velocity_seconds, double length) const;
+
   /// The (M+N) x (N+M) matrix of Eq. (10): rows = M current clusters then N dummies, columns =
   /// N predicted tracks then M dummies. Real pairs cost their distance (Eq. 8) or `forbidden`
-  /// beyond d_max (Eq. 9); a real row or column paired with a dummy costs 2 d_max; dummy-dummy 0.
+  /// beyond the track's gate (Eq. 9; `gates[n]`, d_max for every track when empty); a real row
+  /// or column paired with a dummy costs 2 d_max; dummy-dummy 0.
   Eigen::MatrixXd costMatrix(const std::vector<Eigen::Vector3d>& current,
-                             const std::vector<Eigen::Vector3d>& predicted) const;
+                             const std::vector<Eigen::Vector3d>& predicted,
+                             const std::vector<double>& gates = {}) const;
 
   /// For each current cluster, the index of its track in `predicted`, or -1 (a new object).
+  /// `gates`: one per track (see gate()), or empty for d_max everywhere.
   std::vector<int> associate(const std::vector<Eigen::Vector3d>& current,
-                             const std::vector<Eigen::Vector3d>& predicted) const;
+                             const std::vector<Eigen::Vector3d>& predicted,
+                             const std::vector<double>& gates = {}) const;
 
   double forbidden() const { return 1e6 * p_.gate_distance; }
 

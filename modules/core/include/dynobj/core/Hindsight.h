@@ -85,11 +85,12 @@ class Hindsight {
   cv::Mat_<int> owner_;
   /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) kept out.
   void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);
-  /// start_check for the track `id` at held frame j (position `here`, in the newest frame's
-  /// coordinates, T_jk their transform into frame j), path_ holding its later positions.
+  /// start_check for the track's object `then` at held frame j (position `here`, in the newest
+  /// frame's coordinates, T_jk their transform into frame j), path_ holding its later positions.
   /// `out_speed`: the fastest speed out of a sweep this revision has met so far [m/s], updated.
-  bool movingAt(const std::vector<Held>& held, std::size_t j, int id, const Eigen::Vector3d& here,
-                const Eigen::Isometry3d& T_jk, double& out_speed) const;
+  bool movingAt(const std::vector<Held>& held, std::size_t j, const TrackedObject& then,
+                const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk,
+                double& out_speed) const;
   /// stop_check for the object `o` of the first held frame, path_ holding where its track was seen
   /// from then on (frames 0, ...; positions in frame 0's coordinates).
   bool stoppedAt(const std::vector<Held>& held, const TrackedObject& o) const;
