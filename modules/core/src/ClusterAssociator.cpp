@@ -33,6 +33,8 @@ double ClusterAssociator::gate(double unknown_velocity_seconds, double length) c
 Eigen::MatrixXd ClusterAssociator::costMatrix(const std::vector<Eigen::Vector3d>& current,
                                               const std::vector<Eigen::Vector3d>& predicted,
                                               const std::vector<double>& gates) const {
+  if (!gates.empty() && gates.size() != predicted.size())
+    throw std::invalid_argument("ClusterAssociator: one gate per predicted track");
   const auto M = static_cast<Eigen::Index>(current.size());
   const auto N = static_cast<Eigen::Index>(predicted.size());
   Eigen::MatrixXd D(M + N, N + M);
@@ -59,10 +61,10 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
   if (!gates.empty() && gates.size() != predicted.size())
     throw std::invalid_argument("ClusterAssociator: one gate per predicted track");
   const auto gateOf = [&](std::size_t n) { return gates.empty() ? p_.gate_distance : gates[n]; };
-  // Pairs beyond d_max are forbidden (Eq. 9), so the assignment splits into independent
-  // problems, one per connected component of the "within d_max" graph. Solving each one with its
-  // own dummies (Eq. 10-13) gives exactly the optimum of the whole matrix, at a fraction of the
-  // O(n^3) cost of one large matrix.
+  // Pairs beyond their track's gate are forbidden (Eq. 9), so the assignment splits into
+  // independent problems, one per connected component of the "within the gate" graph. Solving each
+  // one with its own dummies (Eq. 10-13) gives exactly the optimum of the whole matrix, at a
+  // fraction of the O(n^3) cost of one large matrix.
   const std::size_t M = current.size(), N = predicted.size();
   std::vector<std::size_t> parent(M + N);
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = i;

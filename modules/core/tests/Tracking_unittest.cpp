@@ -97,6 +97,7 @@ TEST(ClusterAssociator, ATrackWithoutVelocityGetsAWiderGateWhenItIsVehicleSized)
   p.new_track_speed = 0;
   EXPECT_DOUBLE_EQ(ClusterAssociator(p).gate(0.1, 4.5), 1.0);
   EXPECT_THROW(a.associate({V3(0, 0, 0)}, {V3(0, 0, 0)}, {1.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(a.costMatrix({V3(0, 0, 0)}, {V3(0, 0, 0)}, {1.0, 1.0}), std::invalid_argument);
   p.new_track_length = -1;
   EXPECT_THROW(p.validate(), ParameterError);
 }

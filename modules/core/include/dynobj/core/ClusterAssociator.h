@@ -37,7 +37,8 @@ class ClusterAssociator {
   /// The (M+N) x (N+M) matrix of Eq. (10): rows = M current clusters then N dummies, columns =
   /// N predicted tracks then M dummies. Real pairs cost their distance (Eq. 8) or `forbidden`
   /// beyond the track's gate (Eq. 9; `gates[n]`, d_max for every track when empty); a real row
-  /// or column paired with a dummy costs 2 d_max; dummy-dummy 0.
+  /// or column paired with a dummy costs 2 d_max; dummy-dummy 0. (So a pair farther than 4 d_max
+  /// never beats leaving both unpaired: a wide gate reaches at most that far.)
   Eigen::MatrixXd costMatrix(const std::vector<Eigen::Vector3d>& current,
                              const std::vector<Eigen::Vector3d>& predicted,
                              const std::vector<double>& gates = {}) const;
