@@ -8,6 +8,7 @@
 #include <dynobj/eval/Overlay.h>
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/io/Png.h>
+#include <dynobj/io/PoseFile.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
 #include <dynobj/mrptio/SequenceRunner.h>
 
@@ -54,6 +55,11 @@ int run(int argc, char** argv) {
       "Label-free check against the whole sequence (no ground truth): print how many flagged "
       "points lie where the other sweeps see a static surface, and write a top view (PNG)",
       false, "", "map.png", cmd);
+  TCLAP::ValueArg<std::string> poses_out(
+      "", "poses-out",
+      "Write the detector's ego-motion, chained from the first sweep (its sensor pose = "
+      "identity), as a TUM file of sensor poses",
+      false, "", "file.tum", cmd);
   TCLAP::SwitchArg verbose("v", "verbose", "One line per frame", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
@@ -65,7 +71,8 @@ int run(int argc, char** argv) {
   so.poses = ego_truth.isSet() ? ego_truth.getValue() : poses.getValue();
   so.poses_as_motion = !ego_truth.isSet();
   so.ground_truth = gt.getValue();
-  so.single_sensor = out.isSet() || consistency.isSet() || ego_truth.isSet();  // one sensor
+  so.single_sensor =
+      out.isSet() || consistency.isSet() || ego_truth.isSet() || poses_out.isSet();  // one sensor
   if (overlays.isSet()) dynobj::apps::ensureDirectory(overlays.getValue());
   dynobj::mrptio::RawlogFrameSource source(in.getValue(), sensor.converter(),
                                            {sensor.label(), 0, SIZE_MAX});
@@ -77,6 +84,9 @@ int run(int argc, char** argv) {
   dynobj::eval::EgoMotionError ego_error;
   std::optional<Eigen::Isometry3d> last_truth;
   std::unique_ptr<dynobj::io::LabelFileWriter> writer;
+  std::optional<dynobj::io::TumWriter> pose_writer;
+  if (poses_out.isSet())
+    pose_writer.emplace(poses_out.getValue(), "dynobj-detect ego-motion of " + in.getValue());
   dynobj::eval::DetectionDiagnostics diag;
   dynobj::mrptio::SequenceRunner(source, so).run([&](const dynobj::mrptio::FrameResult& fr) {
     const auto& f = fr.frame.frame;
@@ -89,11 +99,9 @@ int run(int argc, char** argv) {
       if (last_truth) ego_error.add(last_truth->inverse() * fr.pose->pose, r.ego_motion.motion);
       last_truth = fr.pose->pose;
     }
-    if (map_check) {
-      sensor_pose =
-          sensor_pose ? *sensor_pose * r.ego_motion.motion : Eigen::Isometry3d::Identity();
-      map_check->add(f, *sensor_pose, r.dynamic);
-    }
+    sensor_pose = sensor_pose ? *sensor_pose * r.ego_motion.motion : Eigen::Isometry3d::Identity();
+    if (map_check) map_check->add(f, *sensor_pose, r.dynamic);
+    if (pose_writer) pose_writer->write(f.timestamp_ns, *sensor_pose);
     const cv::Mat_<std::uint8_t> truth = fr.truthMask();
     const auto c = diag.add(f, r, truth);
     if (overlays.isSet()) {
@@ -106,6 +114,7 @@ int run(int argc, char** argv) {
       std::cout << dynobj::eval::DetectionDiagnostics::frameLine(fr.frame.index, r, c);
   });
   if (writer) writer->close();
+  if (pose_writer) pose_writer->close();
   std::cout << diag.summaryLine();
   diag.timing().print(std::cout);
   if (ego_check) std::cout << "  ICP check: " << ego_check->summary().toString() << "\n";

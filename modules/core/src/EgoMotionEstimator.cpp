@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "dynobj/core/Config.h"
+#include "dynobj/core/MotionFromMatches.h"
 
 namespace dynobj::core {
 namespace {
@@ -25,17 +26,32 @@ constexpr int kMargin = 16;     ///< describing ORB's edgeThreshold; >= its half
 constexpr int kFastMargin = 4;  ///< detecting ORB's edgeThreshold: FAST's 3 px + 1 for its NMS
 constexpr int kPad = kMargin + kMargin + 1;  ///< + ORB's own border (edgeThreshold + 1)
 
-/// Closed-form rigid transform (Umeyama, no scale) mapping src[i] onto dst[i].
-Eigen::Isometry3d rigidFit(const std::vector<Eigen::Vector3d>& src,
-                           const std::vector<Eigen::Vector3d>& dst) {
-  Eigen::Matrix3Xd a(3, static_cast<Eigen::Index>(src.size())), b(3, a.cols());
-  for (Eigen::Index i = 0; i < a.cols(); i++) {
-    a.col(i) = src[static_cast<std::size_t>(i)];
-    b.col(i) = dst[static_cast<std::size_t>(i)];
-  }
-  Eigen::Isometry3d T;
-  T.matrix() = Eigen::umeyama(a, b, false);
-  return T;
+/// J_u J_u^T + J_v J_v^T at pixel (r, c): J the point's step to the next pixel across the scan
+/// (columns, wrapping) and along it (rows), from the neighbours on the same surface (range within
+/// 10 % + 0.1 m), half the span when both are; zero in a direction with neither.
+Eigen::Matrix3d pixelSpread(const LidarFrame& f, int r, int c) {
+  const float here = f.range(r, c);
+  const float jump = 0.1f * here + 0.1f;
+  const cv::Vec3f& p = f.xyz(r, c);
+  auto on = [&](int rr, int cc) {
+    return rr >= 0 && rr < f.rows() && f.isValid(rr, cc) &&
+           std::abs(f.range(rr, cc) - here) <= jump;
+  };
+  auto step = [&](int ra, int ca, int rb, int cb) -> Eigen::Vector3d {
+    const bool a = on(ra, ca), b = on(rb, cb);
+    cv::Vec3f d(0, 0, 0);
+    if (a && b)
+      d = 0.5f * (f.xyz(rb, cb) - f.xyz(ra, ca));
+    else if (a)
+      d = p - f.xyz(ra, ca);
+    else if (b)
+      d = f.xyz(rb, cb) - p;
+    return {d[0], d[1], d[2]};
+  };
+  const int W = f.cols();
+  const Eigen::Vector3d ju = step(r, (c + W - 1) % W, r, (c + 1) % W);
+  const Eigen::Vector3d jv = step(r - 1, c, r + 1, c);
+  return ju * ju.transpose() + jv * jv.transpose();
 }
 
 /// Hamming distance of two 32-byte ORB descriptors, inline: cv::hal::normHamming is an
@@ -86,6 +102,8 @@ void EgoMotionParams::visit(ParamVisitor& v) {
   v.value("border", border);
   v.value("inlier_distance", inlier_distance);
   v.value("inlier_range_factor", inlier_range_factor);
+  v.value("pixel_spread", pixel_spread);
+  v.value("still_match_pixels", still_match_pixels);
   v.value("iterations", iterations);
   v.value("confidence", confidence);
   v.value("refinements", refinements);
@@ -105,6 +123,8 @@ void EgoMotionParams::validate() const {
   requireInRange("border", border, 0, 20);
   requirePositive("inlier_distance", inlier_distance);
   requireInRange("inlier_range_factor", inlier_range_factor, 0, 1);
+  requireInRange("pixel_spread", pixel_spread, 0, 100);
+  requireInRange("still_match_pixels", still_match_pixels, 0, 1000);
   requireInRange("iterations", iterations, 1, 100000);
   requireInRange("confidence", confidence, 0.5, 1);
   requireInRange("refinements", refinements, 0, 100);
@@ -160,6 +180,7 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
   describer_->compute(padded_(view(kMargin)), kps, desc);
   out.points.clear();
   out.pixels.clear();
+  out.spread.clear();
   out.descriptors.release();
   std::vector<int> keep;
   for (std::size_t i = 0; i < kps.size(); i++) {
@@ -169,6 +190,7 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
     const cv::Vec3f& p = f.xyz(r, c);
     out.points.emplace_back(p[0], p[1], p[2]);
     out.pixels.push_back(r * W + c);
+    if (p_.pixel_spread > 0) out.spread.push_back(pixelSpread(f, r, c));
     keep.push_back(static_cast<int>(i));
   }
   out.descriptors.create(static_cast<int>(keep.size()), desc.cols, desc.type());
@@ -180,6 +202,8 @@ EgoMotion EgoMotionEstimator::estimate(const LidarFrame& frame, const cv::Mat_<f
                                        const cv::Mat_<std::uint8_t>& exclude) {
   EgoMotion em;
   detect(frame, intensity, exclude, cur_);
+  pitch_ = {2 * M_PI / frame.cols(),
+            frame.rows() > 1 ? frame.sensor.fovSpan() / (frame.rows() - 1) : 0.0};
   if (have_prev_ && !prev_.descriptors.empty() && !cur_.descriptors.empty()) {
     std::vector<std::pair<int, int>> pairs;
     match(frame.cols(), p_.match_window, pairs);
@@ -225,71 +249,18 @@ void EgoMotionEstimator::match(int cols, int window, std::vector<std::pair<int, 
 }
 
 void EgoMotionEstimator::solve(const std::vector<std::pair<int, int>>& pairs, EgoMotion& em) {
-  em = EgoMotion{};
-  std::vector<Eigen::Vector3d> src, dst;  // current -> previous
-  for (const auto& [i, j] : pairs) {
-    const cv::Point3f& a = cur_.points[static_cast<std::size_t>(i)];
-    const cv::Point3f& b = prev_.points[static_cast<std::size_t>(j)];
-    src.emplace_back(a.x, a.y, a.z);
-    dst.emplace_back(b.x, b.y, b.z);
+  matches_.resize(pairs.size());
+  for (std::size_t m = 0; m < pairs.size(); m++) {
+    const auto i = static_cast<std::size_t>(pairs[m].first);
+    const auto j = static_cast<std::size_t>(pairs[m].second);
+    PointMatch& pm = matches_[m];
+    pm.cur = {cur_.points[i].x, cur_.points[i].y, cur_.points[i].z};
+    pm.prev = {prev_.points[j].x, prev_.points[j].y, prev_.points[j].z};
+    pm.spread = p_.pixel_spread > 0 ? Eigen::Matrix3d(cur_.spread[i] + prev_.spread[j])
+                                    : Eigen::Matrix3d::Zero();
+    pm.still = cur_.pixels[i] == prev_.pixels[j];
   }
-  em.matches = static_cast<int>(src.size());
-  if (em.matches < std::max(3, p_.min_inliers)) return;
-
-  // RANSAC over minimal 3-point samples, then a least-squares refit on all inliers (Eq. 5).
-  const int n = em.matches;
-  std::uniform_int_distribution<int> pick(0, n - 1);
-  std::vector<char> best_in, in(static_cast<std::size_t>(n));
-  int best = 0;
-  auto countInliers = [&](const Eigen::Isometry3d& T, std::vector<char>& flags) {
-    int k = 0;
-    for (int i = 0; i < n; i++) {
-      const auto& s = src[static_cast<std::size_t>(i)];
-      const double thr = p_.inlier_distance + p_.inlier_range_factor * s.norm();
-      flags[static_cast<std::size_t>(i)] = (T * s - dst[static_cast<std::size_t>(i)]).norm() < thr;
-      k += flags[static_cast<std::size_t>(i)];
-    }
-    return k;
-  };
-  std::vector<Eigen::Vector3d> s3(3), d3(3);
-  int needed = p_.iterations;  // shrinks as the best inlier ratio w grows (adaptive RANSAC)
-  for (int it = 0; it < needed; it++) {
-    const int i0 = pick(rng_), i1 = pick(rng_), i2 = pick(rng_);
-    if (i0 == i1 || i1 == i2 || i0 == i2) continue;
-    s3 = {src[static_cast<std::size_t>(i0)], src[static_cast<std::size_t>(i1)],
-          src[static_cast<std::size_t>(i2)]};
-    d3 = {dst[static_cast<std::size_t>(i0)], dst[static_cast<std::size_t>(i1)],
-          dst[static_cast<std::size_t>(i2)]};
-    if ((s3[1] - s3[0]).cross(s3[2] - s3[0]).norm() < 1e-3) continue;  // degenerate sample
-    const int k = countInliers(rigidFit(s3, d3), in);
-    if (k > best) {
-      best = k;
-      best_in = in;
-      const double w3 = std::pow(static_cast<double>(k) / n, 3);  // P(a sample is all inliers)
-      if (p_.confidence < 1 && w3 > 0 && w3 < 1)
-        needed = std::min(
-            needed, static_cast<int>(std::ceil(std::log(1 - p_.confidence) / std::log(1 - w3))));
-    }
-  }
-  if (best < 3) return;
-  // Least squares on the inliers, re-selecting them with the refined motion until they settle
-  // (at most `refinements` times): a sample's inlier set is only as good as its 3 points.
-  std::vector<Eigen::Vector3d> si, di;
-  for (int pass = 0; pass <= p_.refinements; pass++) {
-    si.clear();
-    di.clear();
-    for (int i = 0; i < n; i++)
-      if (best_in[static_cast<std::size_t>(i)]) {
-        si.push_back(src[static_cast<std::size_t>(i)]);
-        di.push_back(dst[static_cast<std::size_t>(i)]);
-      }
-    em.motion = rigidFit(si, di);
-    em.inliers = countInliers(em.motion, in);
-    if (in == best_in) break;
-    best_in = in;
-  }
-  em.ok = em.inliers >= p_.min_inliers && em.inliers >= p_.min_inlier_ratio * n;
-  em.source = "intensity";
+  em = motionFromMatches(matches_, p_, pitch_, rng_);
 }
 
 void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
@@ -303,6 +274,7 @@ void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
     if (kept != i) {  // compact in place, keeping the order
       prev_.points[kept] = prev_.points[i];
       prev_.pixels[kept] = prev_.pixels[i];
+      if (!prev_.spread.empty()) prev_.spread[kept] = prev_.spread[i];
       std::memcpy(desc.ptr(static_cast<int>(kept)), desc.ptr(static_cast<int>(i)), row_bytes);
     }
     kept++;
@@ -310,6 +282,7 @@ void EgoMotionEstimator::dropPreviousOn(const cv::Mat_<std::uint8_t>& dynamic) {
   if (kept == prev_.pixels.size()) return;
   prev_.points.resize(kept);
   prev_.pixels.resize(kept);
+  if (!prev_.spread.empty()) prev_.spread.resize(kept);
   desc = desc.rowRange(0, static_cast<int>(kept));
 }
 

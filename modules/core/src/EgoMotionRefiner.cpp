@@ -17,6 +17,7 @@ void EgoRefinementParams::visit(ParamVisitor& v) {
   v.value("coarse_iterations", coarse_iterations);
   v.value("max_distance", max_distance);
   v.value("final_distance", final_distance);
+  v.value("max_offset", max_offset);
   v.value("huber", huber);
   v.value("damping", damping);
   v.value("normal_baseline", normal_baseline);
@@ -36,6 +37,7 @@ void EgoRefinementParams::validate() const {
   requirePositive("final_distance", final_distance);
   if (final_distance > max_distance)
     throwParameterError("final_distance", "must not exceed max_distance");
+  requireInRange("max_offset", max_offset, 0, 1000);
   requirePositive("huber", huber);
   requireInRange("damping", damping, 0, 1e6);
   requireInRange("normal_baseline", normal_baseline, 0, 10);
@@ -214,6 +216,7 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
 
   Eigen::Isometry3d T = init;
   const int iters = p_.iterations;
+  const double offset2 = p_.max_offset * p_.max_offset;
   Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Zero();  // of the last step
   for (int it = 0; it < iters; it++) {
     const double gate =
@@ -256,8 +259,10 @@ EgoRefinement EgoMotionRefiner::refine(const LidarFrame& f, const Eigen::Isometr
       const cv::Vec3f &sv = pa.s, &nv = pa.n;
       const Eigen::Vector3d s(sv[0], sv[1], sv[2]), nn(nv[0], nv[1], nv[2]);
       const Eigen::Vector3d d = q - s;
-      if (d.squaredNorm() > gate * gate) continue;
       const double e = nn.dot(d);
+      if (p_.max_offset > 0 ? std::abs(e) > gate || d.squaredNorm() > offset2
+                            : d.squaredNorm() > gate * gate)
+        continue;
       const double w = std::abs(e) <= p_.huber ? 1.0 : p_.huber / std::abs(e);
       Eigen::Matrix<double, 6, 1> J;
       J.head<3>() = q.cross(nn);

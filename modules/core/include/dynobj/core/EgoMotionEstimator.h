@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dynobj/core/LidarFrame.h"
+#include "dynobj/core/MotionFromMatches.h"
 #include "dynobj/core/Params.h"
 
 namespace dynobj::core {
@@ -30,13 +31,26 @@ struct EgoMotionParams : public StageParams {
   int border = 2;             ///< [px] no keypoint this close to a no-return pixel
   double inlier_distance = 0.10;      ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
-  int iterations = 200;               ///< RANSAC iterations at most ...
-  double confidence = 0.9999;         ///< ... fewer once an all-inlier sample was drawn with this
-                                      ///< probability (1 = always all)
-  int refinements = 3;                ///< least-squares refits, inliers re-selected each time
-  int min_inliers = 25;               ///< fewer -> ego-motion failed
-  double min_inlier_ratio = 0.3;      ///< inliers / matches below this -> failed
-  int seed = 1;                       ///< RANSAC random seed
+  /// [px] beyond the paper: a keypoint's pixel is uncertain by this much in each image direction,
+  /// and so its point by that much of the step to the neighbouring pixels on its surface: along a
+  /// surface seen at a grazing angle (the ground, a facade ahead) that is metres. The inlier test
+  /// and the fit weigh each match's residual by the inverse of that spread plus the isotropic
+  /// threshold, so a keypoint that kept its pixel while the sensor slid along the surface does not
+  /// vote for no motion (0 = the paper's isotropic test and closed-form fit)
+  double pixel_spread = 1.0;
+  /// [px] beyond the paper: a match that kept its pixel is no inlier of a motion that moves its
+  /// point by more than this across or along the scan. Where a line runs along the direction of
+  /// travel (a lane marking, a kerb, a facade's edge), its crossing with a scan ring or column is a
+  /// corner that stays in its pixel however far the sensor goes: a 512-column estimate along a
+  /// street voted for 14 % less motion than was travelled (0 = off)
+  double still_match_pixels = 1.0;
+  int iterations = 200;           ///< RANSAC iterations at most ...
+  double confidence = 0.9999;     ///< ... fewer once an all-inlier sample was drawn with this
+                                  ///< probability (1 = always all)
+  int refinements = 3;            ///< least-squares refits, inliers re-selected each time
+  int min_inliers = 25;           ///< fewer -> ego-motion failed
+  double min_inlier_ratio = 0.3;  ///< inliers / matches below this -> failed
+  int seed = 1;                   ///< RANSAC random seed
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -74,6 +88,9 @@ class EgoMotionEstimator {
   struct Features {
     std::vector<cv::Point3f> points;  ///< 3D point of each keypoint
     std::vector<int> pixels;          ///< its pixel index
+    /// J_u J_u^T + J_v J_v^T: J the point's step to the next pixel on its surface across and
+    /// along the scan (zero where no neighbour is on it); see EgoMotionParams::pixel_spread
+    std::vector<Eigen::Matrix3d> spread;
     cv::Mat descriptors;
   };
   void detect(const LidarFrame& frame, const cv::Mat_<float>& intensity,
@@ -92,6 +109,8 @@ class EgoMotionEstimator {
   std::mt19937 rng_;
   cv::Mat img8_, up_, padded_, mask_, mask_up_, mask_pad_;
   std::vector<std::vector<int>> buckets_;
+  PixelPitch pitch_;                 ///< the current sensor's
+  std::vector<PointMatch> matches_;  ///< solve()'s matches (kept: no allocation per frame)
 };
 
 }  // namespace dynobj::core

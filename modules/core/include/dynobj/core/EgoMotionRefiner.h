@@ -6,11 +6,12 @@
 // one object. The refinement is a point-to-plane ICP with projective association (each sampled
 // point of the current frame is carried into the previous frame by the current estimate and
 // projected with Eq. 1; its partner is the previous frame's point in that pixel, with the normal of
-// the previous range image there), Huber-weighted, starting from the feature estimate (or from the
-// constant-velocity guess when the features failed) and damped towards it. A direction of
-// translation that few partners see (a long street's axis, where the only partners facing it are a
-// few posts, car ends, and the car ahead that moves) keeps the feature estimate's translation
-// (degenerate_share: solution remapping, Zhang, Kaess & Singh, ICRA 2016).
+// the previous range image there, gated on the point-to-plane distance), Huber-weighted, starting
+// from the feature estimate (or from the constant-velocity guess when the features failed) and
+// damped towards it. A direction of translation that few partners see (a long street's axis, where
+// the only partners facing it are a few posts, car ends, and the car ahead that moves) keeps the
+// feature estimate's translation (degenerate_share: solution remapping, Zhang, Kaess & Singh, ICRA
+// 2016).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -26,13 +27,21 @@ namespace dynobj::core {
 
 struct EgoRefinementParams : public StageParams {
   bool enabled = true;
-  int points = 3000;            ///< pixels of the current frame sampled (evenly)
-  int iterations = 8;           ///< Gauss-Newton steps at most, of which the first ...
-  int coarse_iterations = 3;    ///< ... this many use every 4th sampled point (coarse to fine)
-  double max_distance = 0.5;    ///< [m] partners farther apart are ignored (first step) ...
+  int points = 3000;          ///< pixels of the current frame sampled (evenly)
+  int iterations = 8;         ///< Gauss-Newton steps at most, of which the first ...
+  int coarse_iterations = 3;  ///< ... this many use every 4th sampled point (coarse to fine)
+  /// [m] a partner farther than this from the other point's tangent plane is ignored (first
+  /// step) ...
+  double max_distance = 0.5;
   double final_distance = 0.2;  ///< [m] ... shrinking linearly to this at the last step
-  double huber = 0.05;          ///< [m] Huber kernel width on point-to-plane residuals
-  double damping = 0.001;       ///< step damping, relative to the mean information per axis
+  /// [m] ... and one farther than this in any direction. Along its surface a partner lies up to
+  /// half a pixel's footprint away, metres on the far ground of a 16-row sensor: gating that
+  /// distance at final_distance kept the partners that happened to lie near a ring and tilted a
+  /// VLP-16's pitch by 0.16 deg per sweep on a street (0 = gate the distance itself at
+  /// max_distance ... final_distance, as before session 19)
+  double max_offset = 1.0;
+  double huber = 0.05;     ///< [m] Huber kernel width on point-to-plane residuals
+  double damping = 0.001;  ///< step damping, relative to the mean information per axis
   /// [m] a normal's two neighbours in its row are at least this far apart (near the sensor the
   /// adjacent columns are millimetres apart and their range noise would tilt it at random)
   double normal_baseline = 0.1;
