@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dynobj/core/Config.h"
+#include "dynobj/core/Se3.h"
 
 namespace dynobj::core {
 
@@ -56,16 +57,6 @@ constexpr std::size_t kAhead = 8;         ///< points between a prefetch and its
 /// A normal whose baseline would span more than this azimuth belongs to a point within ~1 m of
 /// the sensor (the platform itself, mostly): none is computed there.
 constexpr double kMaxNormalSpan = 6.0 * M_PI / 180.0;
-
-Eigen::Isometry3d expSE3(const Eigen::Matrix<double, 6, 1>& xi) {  // (omega, v), left increment
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  const Eigen::Vector3d w = xi.head<3>();
-  const double a = w.norm();
-  if (a > 1e-12) T.linear() = Eigen::AngleAxisd(a, w / a).toRotationMatrix();
-  T.translation() = xi.tail<3>();
-  return T;
-}
-
 }  // namespace
 
 int EgoMotionRefiner::keepFeatureTranslationWhereDegenerate(const Eigen::Matrix<double, 6, 6>& H,

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dynobj/core/EgoMotionEstimator.h"
+#include "dynobj/core/Se3.h"
 
 namespace dynobj::core {
 namespace {
@@ -41,11 +42,7 @@ Eigen::Isometry3d weightedFit(const std::vector<Eigen::Vector3d>& src,
     }
     const Eigen::Matrix<double, 6, 1> xi = H.ldlt().solve(-g);
     if (!xi.allFinite()) break;
-    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-    if (const double a = xi.head<3>().norm(); a > 1e-12)
-      step.linear() = Eigen::AngleAxisd(a, xi.head<3>() / a).toRotationMatrix();
-    step.translation() = xi.tail<3>();
-    T = step * T;
+    T = expSE3(xi) * T;
     if (xi.head<3>().norm() < 1e-7 && xi.tail<3>().norm() < 1e-6) break;
   }
   return T;
