@@ -13,12 +13,14 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("gate_distance", gate_distance);
   v.value("new_track_speed", new_track_speed);
   v.value("new_track_length", new_track_length);
+  v.value("split_radius", split_radius);
 }
 
 void AssociationParams::validate() const {
   requirePositive("gate_distance", gate_distance);
   requireInRange("new_track_speed", new_track_speed, 0, 100);
   requireInRange("new_track_length", new_track_length, 0, 100);
+  requireInRange("split_radius", split_radius, 0, 10);
 }
 
 ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {

@@ -89,6 +89,9 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       free_space_(params.free_space, static_cast<std::size_t>(params.free_space.lookback + 1)),
       tracks_(params.tracking, params.movement.window),
       grower_(params.region_growing),
+      split_{params.association.split_radius,
+             params.clustering.horizontal_distance / params.clustering.vertical_distance,
+             params.clustering.horizontal_distance, params.clustering.min_points},
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
                    params.free_space.lookback + 2))),
@@ -186,10 +189,14 @@ const DetectionResult& DynamicObjectDetector::process(
                         ? associator_.gate((t.missed + 1) * dt, (seen.end_b - seen.end_a).norm())
                         : associator_.gate(0, 0));
   }
-  const std::vector<int> cluster_to_track =
+  std::vector<int> cluster_to_track =
       associator_.associate(centroidsOf(clusters_), predicted, gates);
+  // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
+  const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
+                                              predicted, clusters_, cluster_to_track);
   findWeakSeeds(predicted, cluster_to_track);
   tracks_.update(frame_index_, clusters_, cluster_to_track);
+  rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
   r.timings.association = clock.lap();
 
   // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window, outliers

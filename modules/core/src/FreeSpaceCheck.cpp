@@ -19,6 +19,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("side_rays", side_rays);
   v.value("side_rows", side_rows);
   v.value("min_solid_ratio", min_solid_ratio);
+  v.value("slide_free_ratio", slide_free_ratio);
 }
 
 void FreeSpaceParams::validate() const {
@@ -30,17 +31,24 @@ void FreeSpaceParams::validate() const {
   requireInRange("side_rays", side_rays, 0, 100);
   requireInRange("side_rows", side_rows, 0, 100);
   requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
+  requireInRange("slide_free_ratio", slide_free_ratio, 0, 1);
 }
 
-bool FreeSpaceEvidence::supportsMotion(const FreeSpaceParams& p) const {
+namespace {
+double freeRatioNeeded(const FreeSpaceParams& p, bool slides) {
+  return slides ? std::max(p.min_free_ratio, p.slide_free_ratio) : p.min_free_ratio;
+}
+}  // namespace
+
+bool FreeSpaceEvidence::supportsMotion(const FreeSpaceParams& p, bool slides) const {
   const int decisive = free + occupied;
   if (decisive < p.min_evidence) return true;  // no verdict: keep the candidate
-  return free >= p.min_free_ratio * decisive;
+  return free >= freeRatioNeeded(p, slides) * decisive;
 }
 
-bool FreeSpaceEvidence::provesMotion(const FreeSpaceParams& p) const {
+bool FreeSpaceEvidence::provesMotion(const FreeSpaceParams& p, bool slides) const {
   const int decisive = free + occupied;
-  return decisive >= p.min_evidence && free >= p.min_free_ratio * decisive;
+  return decisive >= p.min_evidence && free >= freeRatioNeeded(p, slides) * decisive;
 }
 
 FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
@@ -197,7 +205,7 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   // from Eq. (23) and a young track judged on a short window must, and any other candidate is
   // only refuted by the evidence.
   const bool must_prove = p_.require_proof || d.rigid || d.early;
-  d.static_surface = must_prove ? !e.provesMotion(p_) : !e.supportsMotion(p_);
+  d.static_surface = must_prove ? !e.provesMotion(p_, d.slides) : !e.supportsMotion(p_, d.slides);
   // Seen through: only asked of a candidate the evidence above left standing.
   d.porous = !d.static_surface && p_.min_solid_ratio > 0 &&
              solidRatio(frame, cluster, p_) < p_.min_solid_ratio;

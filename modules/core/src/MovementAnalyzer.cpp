@@ -118,6 +118,7 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
       const bool viewpoint_moved =
           p_.long_object_ego_ratio <= 0 || ego * p_.long_object_ego_ratio >= d.displacement;
       d.long_object = d.angle < p_.long_object_angle && !d.rigid && viewpoint_moved;
+      d.slides = d.angle < p_.long_object_angle && d.rigid && viewpoint_moved;
     }
   }
   return d;

@@ -287,6 +287,16 @@ TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
   EXPECT_TRUE(d.rigid);
   EXPECT_FALSE(d.long_object);
   EXPECT_TRUE(d.moving());
+  // ... but it slides along itself while the robot moved (1.2 m <= 3 x 0.4 m): the free-space
+  // check asks it for more free space (slide_free_ratio), as a rigid strip of wall would show
+  // less. Across its axis, or seen from a sensor that stands still, it does not slide.
+  EXPECT_TRUE(d.slides);
+  Cluster across = car;
+  across.main_direction = Eigen::Vector2d(0, 1);
+  EXPECT_FALSE(m.analyse(w, chain, across, 0.1).slides);
+  FrameChain still(16);
+  for (long i = 0; i < 5; i++) still.push(i, Eigen::Isometry3d::Identity(), true);
+  EXPECT_FALSE(m.analyse(w, still, car, 0.1).slides);
   // A wall whose real end stays at world x = -1 while its visible part grows with the robot's
   // view (other end at world x = 3 + 0.2 i): its centroid slides too, but one end is fixed.
   Window wall;
@@ -296,6 +306,7 @@ TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
   EXPECT_TRUE(dw.candidate);
   EXPECT_FALSE(dw.rigid);
   EXPECT_TRUE(dw.long_object);
+  EXPECT_FALSE(dw.slides);  // rejected by Eq. (23) already
   // rigid_tolerance = 0 restores the paper's Eq. (23) for every elongated cluster, with the
   // default long_object_ego_ratio = 0 (with 1.5 Eq. 23 would not apply to this car either: it
   // moved 1.2 m, more than 1.5 x the robot's 0.4 m).

@@ -20,6 +20,11 @@ struct AssociationParams : public StageParams {
   /// that fast, and a walker's first cluster linked to clutter 2 m away starts its window with
   /// a jump (its detection then waits until the jump leaves the window)
   double new_track_length = 1.0;
+  /// [m] beyond the paper (docs/algorithm.md §5, SettledSplit.h): a cluster that holds both a
+  /// mover and an object settled at rest (a walker passing one who stands, or a tree) is split
+  /// between their tracks: its points within this horizontal distance of the resting object's
+  /// last points are the resting object's. 0 = the paper: the merged cluster is one observation
+  double split_radius = 0.2;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

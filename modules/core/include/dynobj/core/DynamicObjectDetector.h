@@ -22,6 +22,7 @@
 #include "dynobj/core/LidarFrame.h"
 #include "dynobj/core/MovementAnalyzer.h"
 #include "dynobj/core/RegionGrower.h"
+#include "dynobj/core/SettledSplit.h"
 #include "dynobj/core/StageWorker.h"
 #include "dynobj/core/TrackManager.h"
 
@@ -155,6 +156,7 @@ class DynamicObjectDetector {
   FreeSpaceCheck free_space_;
   TrackManager tracks_;
   RegionGrower grower_;
+  SettledSplitParams split_;
   FrameChain chain_;
   StageWorker worker_;  ///< runs egoMotion() ([pipeline] threads)
 

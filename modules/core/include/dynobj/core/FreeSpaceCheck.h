@@ -47,6 +47,11 @@ struct FreeSpaceParams : public StageParams {
   /// returning 8-neighbours within margin + range_factor x range) is seen through: foliage, not
   /// a mover (0 = off). Beyond the paper (docs/algorithm.md 7b).
   double min_solid_ratio = 0.3;
+  /// A rigid cluster moving along its own axis where the viewpoint moved (MovementDecision::slides:
+  /// what a wall's visible part does) must show at least this share of free points instead of
+  /// min_free_ratio: a see-through fence beside the path slides with the sensor and shows
+  /// 0.4-0.67, a car driving along 0.9 (<= min_free_ratio = off). Beyond the paper (7b).
+  double slide_free_ratio = 0.75;
 
   /// [m] two ranges near `range` agree within this: margin + range_factor x range.
   double tolerance(double range) const { return margin + range_factor * range; }
@@ -58,9 +63,10 @@ struct FreeSpaceParams : public StageParams {
 struct FreeSpaceEvidence {
   int free = 0, occupied = 0, unknown = 0;
   /// Not contradicted: enough free evidence, or too little evidence either way.
-  bool supportsMotion(const FreeSpaceParams& p) const;
-  /// Positively shown: at least min_evidence decisive points, enough of them free.
-  bool provesMotion(const FreeSpaceParams& p) const;
+  bool supportsMotion(const FreeSpaceParams& p, bool slides = false) const;
+  /// Positively shown: at least min_evidence decisive points, enough of them free (a share of
+  /// min_free_ratio, or of slide_free_ratio for a cluster that `slides`).
+  bool provesMotion(const FreeSpaceParams& p, bool slides = false) const;
 };
 
 /// Share of `cluster`'s pixels that lie on a solid surface of `frame`'s range image: at least half

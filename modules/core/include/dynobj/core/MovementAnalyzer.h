@@ -78,8 +78,10 @@ struct MovementDecision {
   bool drift = false;                 ///< f / f_a < epsilon_o
   bool long_object = false;           ///< elongated and moving along itself
   bool rigid = false;                 ///< elongated, and both its ends moved with the centroid
-  bool static_surface = false;        ///< set by FreeSpaceCheck: its space was occupied already
-  bool porous = false;                ///< set by FreeSpaceCheck: seen through (foliage)
+  bool slides = false;          ///< rigid, moving along its own axis where the viewpoint moved as a
+                                ///< wall's visible part does (FreeSpaceParams::slide_free_ratio)
+  bool static_surface = false;  ///< set by FreeSpaceCheck: its space was occupied already
+  bool porous = false;          ///< set by FreeSpaceCheck: seen through (foliage)
   bool moving() const {
     return enough_history && candidate && !drift && !long_object && !static_surface && !porous &&
            !stopped;

@@ -44,7 +44,12 @@ struct Track {
   int positives = 0, negatives = 0;
   bool settled = false;  ///< judged static settled_frames times in a row since it last moved
   MovementDecision decision;
+  /// Settled at rest: the points of its last cluster, in the sensor frame of sweep shape_frame
+  /// (SettledSplit.h); empty otherwise.
+  std::vector<Eigen::Vector3f> shape;
+  long shape_frame = -1;
 
+  bool atRest() const { return settled && !dynamic; }
   Eigen::Vector3d position() const { return {state(0), state(1), z}; }
   Eigen::Vector2d velocity() const { return state.tail<2>(); }
 };

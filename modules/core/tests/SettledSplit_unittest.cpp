@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// splitSettled (docs/algorithm.md §5): a cluster that holds a walker and one who stands is split
+// between their tracks by the standing one's last points.
+#include <dynobj/core/SettledSplit.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "SyntheticScene.h"
+
+using namespace dynobj::core;
+
+namespace {
+
+/// Eight points in a vertical column (rows 4..11, column `col`) at (x, y), 0.1 m apart in z.
+void column(LidarFrame& f, int col, float x, float y, std::vector<int>& pixels) {
+  for (int r = 4; r < 12; r++) {
+    const float z = 0.1f * static_cast<float>(8 - r);
+    f.setPixel(r, col, std::hypot(x, y, z), 1.f, cv::Vec3f(x, y, z), r * 100 + col);
+    pixels.push_back(r * f.cols() + col);
+  }
+}
+
+struct MergeScene {
+  LidarFrame frame{dynobj::test::smallSensor(16, 64)};
+  std::vector<int> rest_px, walker_px;  ///< the two parts of the merged cluster
+  std::vector<Cluster> clusters;
+  std::vector<Track> tracks;  ///< [0] settled at rest, [1] dynamic (a walker)
+  std::vector<Eigen::Vector3d> predicted;
+  FrameChain chain;
+
+  /// One who stands at (3, 0) (two columns of points 0.1 m apart) and a walker at (3, 0.6) with
+  /// `walker_columns` columns, in one cluster. The sensor moved `travel` m forward (x) between
+  /// sweep 0, where the standing one's shape was kept, and sweep 1, this one.
+  explicit MergeScene(int walker_columns = 2, double travel = 0.5) {
+    column(frame, 30, 3.0f, 0.0f, rest_px);
+    column(frame, 31, 3.0f, 0.1f, rest_px);
+    for (int i = 0; i < walker_columns; i++)
+      column(frame, 36 + i, 3.0f, 0.6f + 0.1f * static_cast<float>(i), walker_px);
+    Cluster merged;
+    merged.pixels = rest_px;
+    merged.pixels.insert(merged.pixels.end(), walker_px.begin(), walker_px.end());
+    computeClusterShape(frame, merged);
+    clusters.push_back(merged);
+
+    Track rest;
+    rest.id = 7;
+    rest.settled = true;
+    rest.shape_frame = 0;
+    for (int px : rest_px) {  // where it stood, seen from sweep 0: `travel` m farther
+      const cv::Vec3f& p = frame.pointAt(px);
+      rest.shape.emplace_back(p[0] + static_cast<float>(travel), p[1], p[2]);
+    }
+    Track walker;
+    walker.id = 8;
+    walker.dynamic = true;
+    tracks = {rest, walker};
+    predicted = {{3.0, 0.05, 0.0}, {3.0, 0.65, 0.0}};
+    chain.push(0, Eigen::Isometry3d::Identity(), true);
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // T_{0<-1}
+    motion.translation().x() = travel;
+    chain.push(1, motion, true);
+  }
+
+  void split(std::vector<int>& cluster_to_track, double radius = 0.2) {
+    SettledSplitParams p;
+    p.radius = radius;
+    splitSettled(p, frame, 1, chain, tracks, predicted, clusters, cluster_to_track);
+  }
+
+  static std::vector<int> sorted(std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  }
+};
+
+}  // namespace
+
+TEST(SettledSplit, TheWalkersClusterGivesTheStandingOneItsPoints) {
+  MergeScene s;
+  std::vector<int> to_track = {1};  // the walker took the merged cluster
+  s.split(to_track);
+  ASSERT_EQ(s.clusters.size(), 2u);
+  ASSERT_EQ(to_track, (std::vector<int>{1, 0}));
+  EXPECT_EQ(MergeScene::sorted(s.clusters[0].pixels), MergeScene::sorted(s.walker_px));
+  EXPECT_EQ(MergeScene::sorted(s.clusters[1].pixels), MergeScene::sorted(s.rest_px));
+  EXPECT_NEAR(s.clusters[0].centroid.y(), 0.65, 1e-5);  // shapes recomputed
+  EXPECT_NEAR(s.clusters[1].centroid.y(), 0.05, 1e-5);
+}
+
+TEST(SettledSplit, TheStandingOnesClusterGivesTheWalkerItsPoints) {
+  MergeScene s;
+  std::vector<int> to_track = {0};  // the standing one took it: the walker found none
+  s.split(to_track);
+  ASSERT_EQ(s.clusters.size(), 2u);
+  ASSERT_EQ(to_track, (std::vector<int>{0, 1}));
+  EXPECT_EQ(MergeScene::sorted(s.clusters[0].pixels), MergeScene::sorted(s.rest_px));
+  EXPECT_EQ(MergeScene::sorted(s.clusters[1].pixels), MergeScene::sorted(s.walker_px));
+}
+
+TEST(SettledSplit, TheShapeIsMovedWithTheSensor) {
+  // The shape kept in sweep 0 lies 0.5 m farther; carried into sweep 1 it meets the points. Read
+  // in the wrong direction (or not moved) it would lie 0.5-1 m away and nothing would split.
+  MergeScene moved(2, 0.5), still(2, 0.0);
+  std::vector<int> a = {1}, b = {1};
+  moved.split(a);
+  still.split(b);
+  EXPECT_EQ(moved.clusters.size(), 2u);
+  EXPECT_EQ(still.clusters.size(), 2u);
+  MergeScene forgotten(2, 0.5);
+  forgotten.chain.clear();  // the shape's sweep is no longer in the chain: no split
+  forgotten.chain.push(1, Eigen::Isometry3d::Identity(), true);
+  std::vector<int> c = {1};
+  forgotten.split(c);
+  EXPECT_EQ(forgotten.clusters.size(), 1u);
+  EXPECT_EQ(c, (std::vector<int>{1}));
+}
+
+TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
+  // A false mover (a tree) that found no cluster and touches a resting object must not live on
+  // the resting object's edge: a part of 8 of 40 points (a fifth) is not taken, 16 of 32 is.
+  MergeScene small(1), fair(2);
+  std::vector<int> a = {0}, b = {0};
+  small.tracks[0].shape.clear();
+  // A resting object of four columns, so the walker's one column is a fifth of the cluster.
+  for (int col : {32, 33}) {
+    std::vector<int> more;
+    column(small.frame, col, 3.0f, 0.1f * static_cast<float>(col - 30), more);
+    small.clusters[0].pixels.insert(small.clusters[0].pixels.end(), more.begin(), more.end());
+  }
+  for (int px : small.clusters[0].pixels) {
+    const cv::Vec3f& p = small.frame.pointAt(px);
+    if (p[1] < 0.55f) small.tracks[0].shape.emplace_back(p[0] + 0.5f, p[1], p[2]);
+  }
+  computeClusterShape(small.frame, small.clusters[0]);
+  small.split(a);
+  EXPECT_EQ(small.clusters.size(), 1u);
+  EXPECT_EQ(a, (std::vector<int>{0}));
+  fair.split(b);
+  EXPECT_EQ(fair.clusters.size(), 2u);
+}
+
+TEST(SettledSplit, TheStandingOneAloneIsTakenFromTheMover) {
+  // The walker's track took a cluster that is only the standing one (the walker is hidden):
+  // the cluster goes to the standing one's track, the walker coasts.
+  MergeScene s(0);
+  std::vector<int> to_track = {1};
+  s.split(to_track);
+  EXPECT_EQ(s.clusters.size(), 1u);
+  EXPECT_EQ(to_track, (std::vector<int>{0}));
+}
+
+TEST(SettledSplit, NothingChangesWhenOffOrWhenBothAreAlike) {
+  MergeScene off;
+  std::vector<int> a = {1};
+  off.split(a, 0.0);
+  EXPECT_EQ(off.clusters.size(), 1u);
+  EXPECT_EQ(a, (std::vector<int>{1}));
+  MergeScene both_rest;  // two tracks at rest merged: not this rule's business
+  both_rest.tracks[1].dynamic = false;
+  both_rest.tracks[1].settled = true;
+  std::vector<int> b = {1};
+  both_rest.split(b);
+  EXPECT_EQ(both_rest.clusters.size(), 1u);
+  MergeScene far;  // the standing one's prediction is nowhere near the cluster
+  far.predicted[0] = {8.0, 5.0, 0.0};
+  std::vector<int> c = {1};
+  far.split(c);
+  EXPECT_EQ(far.clusters.size(), 1u);
+}
+
+TEST(SettledSplit, RememberShapesKeepsOnlyTracksAtRest) {
+  MergeScene s;
+  s.tracks[0].cluster = 0;
+  s.tracks[1].cluster = 0;
+  s.tracks[1].shape = {Eigen::Vector3f(1, 2, 3)};
+  rememberShapes(s.frame, 4, s.clusters, {}, s.tracks);
+  EXPECT_EQ(s.tracks[0].shape.size(), s.clusters[0].pixels.size());
+  EXPECT_EQ(s.tracks[0].shape_frame, 4);
+  EXPECT_TRUE(s.tracks[1].shape.empty());
+  EXPECT_EQ(s.tracks[1].shape_frame, -1);
+}
+
+TEST(SettledSplit, TheMoversPartMustLieWhereTheMoverWasExpected) {
+  // The walker's track expected it 0.5 m from where its part lies (a false mover wandering over a
+  // fence, or a resting object's face the walker hid): nothing changes, whichever took it.
+  MergeScene s;
+  s.predicted[1] = {3.0, 1.15, 0.0};
+  std::vector<int> a = {1}, b = {0};
+  s.split(a);
+  EXPECT_EQ(s.clusters.size(), 1u);
+  EXPECT_EQ(a, (std::vector<int>{1}));
+  MergeScene t;
+  t.predicted[1] = {3.0, 1.15, 0.0};
+  t.split(b);
+  EXPECT_EQ(t.clusters.size(), 1u);
+  EXPECT_EQ(b, (std::vector<int>{0}));
+}
+
+TEST(SettledSplit, AResterGivenItsPartKeepsItsShape) {
+  MergeScene s;
+  std::vector<int> to_track = {1};
+  const std::vector<int> resting =
+      splitSettled({}, s.frame, 1, s.chain, s.tracks, s.predicted, s.clusters, to_track);
+  ASSERT_EQ(resting, (std::vector<int>{7}));
+  s.tracks[0].cluster = 1;  // its part
+  const std::vector<Eigen::Vector3f> before = s.tracks[0].shape;
+  rememberShapes(s.frame, 1, s.clusters, resting, s.tracks);
+  EXPECT_EQ(s.tracks[0].shape, before);  // not the part (a merge may hide some of it)
+  EXPECT_EQ(s.tracks[0].shape_frame, 0);
+}
