@@ -36,12 +36,14 @@ class ShapeGrid {
 
  private:
   std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / r_)); }
-  static std::int64_t key(std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); }
+  static std::uint64_t key(std::int64_t i, std::int64_t j) {  // unsigned: no shift of a negative
+    return (static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffU);
+  }
   Eigen::Vector3d scaled(const Eigen::Vector3d& q) const {
     return {q.x(), q.y(), q.z() * z_scale_};
   }
   double r_, z_scale_;
-  std::unordered_map<std::int64_t, std::vector<Eigen::Vector3d>> cells_;
+  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3d>> cells_;
 };
 
 bool reaches(const Cluster& c, const Eigen::Vector3d& p, double margin) {

@@ -32,11 +32,12 @@ struct MergeScene {
   /// One who stands at (3, 0) (two columns of points 0.1 m apart) and a walker at (3, 0.6) with
   /// `walker_columns` columns, in one cluster. The sensor moved `travel` m forward (x) between
   /// sweep 0, where the standing one's shape was kept, and sweep 1, this one.
-  explicit MergeScene(int walker_columns = 2, double travel = 0.5) {
-    column(frame, 30, 3.0f, 0.0f, rest_px);
-    column(frame, 31, 3.0f, 0.1f, rest_px);
+  /// `dy` [m] moves the whole scene sideways (negative coordinates).
+  explicit MergeScene(int walker_columns = 2, double travel = 0.5, float dy = 0.f) {
+    column(frame, 30, 3.0f, dy, rest_px);
+    column(frame, 31, 3.0f, dy + 0.1f, rest_px);
     for (int i = 0; i < walker_columns; i++)
-      column(frame, 36 + i, 3.0f, 0.6f + 0.1f * static_cast<float>(i), walker_px);
+      column(frame, 36 + i, 3.0f, dy + 0.6f + 0.1f * static_cast<float>(i), walker_px);
     Cluster merged;
     merged.pixels = rest_px;
     merged.pixels.insert(merged.pixels.end(), walker_px.begin(), walker_px.end());
@@ -55,7 +56,7 @@ struct MergeScene {
     walker.id = 8;
     walker.dynamic = true;
     tracks = {rest, walker};
-    predicted = {{3.0, 0.05, 0.0}, {3.0, 0.65, 0.0}};
+    predicted = {{3.0, dy + 0.05, 0.0}, {3.0, dy + 0.65, 0.0}};
     chain.push(0, Eigen::Isometry3d::Identity(), true);
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // T_{0<-1}
     motion.translation().x() = travel;
@@ -86,6 +87,14 @@ TEST(SettledSplit, TheWalkersClusterGivesTheStandingOneItsPoints) {
   EXPECT_EQ(MergeScene::sorted(s.clusters[1].pixels), MergeScene::sorted(s.rest_px));
   EXPECT_NEAR(s.clusters[0].centroid.y(), 0.65, 1e-5);  // shapes recomputed
   EXPECT_NEAR(s.clusters[1].centroid.y(), 0.05, 1e-5);
+}
+
+TEST(SettledSplit, NegativeCoordinatesSplitTheSame) {
+  MergeScene s(2, 0.5, -5.f);  // both at y < 0 (the shape's grid cells are negative)
+  std::vector<int> to_track = {1};
+  s.split(to_track);
+  ASSERT_EQ(s.clusters.size(), 2u);
+  EXPECT_EQ(MergeScene::sorted(s.clusters[1].pixels), MergeScene::sorted(s.rest_px));
 }
 
 TEST(SettledSplit, TheStandingOnesClusterGivesTheWalkerItsPoints) {
