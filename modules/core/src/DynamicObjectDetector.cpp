@@ -205,7 +205,9 @@ const DetectionResult& DynamicObjectDetector::process(
   r.timings.movement = clock.lap();
 
   // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
-  const std::vector<int> grown = grower_.grow(frame, r.ground, seeds, r.dynamic, owner_);
+  const std::vector<int> grown =
+      grower_.grow(frame, r.ground, seeds, r.dynamic, owner_, pastSurfaceTest(frame, dt, seeds));
+  r.seen_static = grower_.refused();
   r.timings.region_growing = clock.lap();
 
   endFrame(frame, grown);
@@ -216,6 +218,7 @@ const DetectionResult& DynamicObjectDetector::process(
 double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
   DetectionResult& r = result_;
   r.objects.clear();
+  r.seen_static.clear();
   r.timestamp_ns = frame.timestamp_ns;
   r.frame_index = ++frame_index_;
   const double dt = (last_stamp_ != 0 && frame.timestamp_ns > last_stamp_)
@@ -286,9 +289,38 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
   return seeds;
 }
 
+RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
+    const LidarFrame& frame, double dt, const std::vector<std::vector<int>>& seeds) const {
+  if (!grower_.params().past_surface_check) return {};
+  const long past = std::max(chain_.oldest(), frame_index_ - free_space_.params().lookback);
+  const auto view = free_space_.pastView(frame, frame_index_, past, chain_);
+  if (!view) return {};
+  // Per seed set: did its object travel farther than its own horizontal extent since `past`?
+  std::vector<char> clear(seeds.size(), 0);
+  bool any = false;
+  for (std::size_t s = 0; s < seeds.size(); s++) {
+    const auto tr = std::find_if(tracks_.tracks().begin(), tracks_.tracks().end(),
+                                 [id = seed_track_[s]](const Track& t) { return t.id == id; });
+    if (tr == tracks_.tracks().end() || seeds[s].empty()) continue;
+    Eigen::Vector2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
+    for (int px : seeds[s]) {
+      const cv::Vec3f& p = frame.pointAt(px);
+      lo = lo.cwiseMin(Eigen::Vector2f(p[0], p[1]));
+      hi = hi.cwiseMax(Eigen::Vector2f(p[0], p[1]));
+    }
+    const double travelled = tr->velocity().norm() * dt * static_cast<double>(frame_index_ - past);
+    clear[s] = travelled > static_cast<double>((hi - lo).norm());
+    any = any || clear[s];
+  }
+  if (!any) return {};
+  return [this, &frame, v = *view, clear](std::size_t obj, int px) {
+    return !clear[obj] || !free_space_.sawSurfaceThen(v, frame.pointAt(px));
+  };
+}
+
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
-  free_space_.remember(frame_index_, frame);
+  free_space_.remember(frame_index_, frame, result_.ground);
   refiner_.remember(frame, result_.ground);
   ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
   result_.dynamic.copyTo(prev_dynamic_);

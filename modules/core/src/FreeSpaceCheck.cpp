@@ -56,19 +56,25 @@ FreeSpaceCheck::FreeSpaceCheck(const FreeSpaceParams& p, std::size_t history)
   p_.validate();
 }
 
-void FreeSpaceCheck::remember(long index, const LidarFrame& frame) {
+void FreeSpaceCheck::remember(long index, const LidarFrame& frame,
+                              const cv::Mat_<std::uint8_t>& ground) {
   if (!p_.enabled) return;
   if (!proj_ || proj_->sensor().rows != frame.rows() || proj_->sensor().cols != frame.cols())
     proj_.emplace(frame.sensor);     // built once, not per candidate
-  if (ranges_.size() >= history_) {  // recycle the oldest buffer
+  if (ranges_.size() >= history_) {  // recycle the oldest buffers
     auto oldest = std::move(ranges_.front());
     ranges_.pop_front();
     frame.range.copyTo(oldest.second);
     oldest.first = index;
     ranges_.push_back(std::move(oldest));
+    cv::Mat_<std::uint8_t> g = std::move(grounds_.front());
+    grounds_.pop_front();
+    ground.copyTo(g);
+    grounds_.push_back(std::move(g));
     return;
   }
   ranges_.emplace_back(index, frame.range.clone());
+  grounds_.push_back(ground.clone());
 }
 
 namespace {
@@ -149,6 +155,31 @@ double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpa
     if (valid > 0 && 2 * agree >= valid) solid++;
   }
   return pixels > 0 ? static_cast<double>(solid) / pixels : 1.0;
+}
+
+std::optional<FreeSpaceCheck::PastView> FreeSpaceCheck::pastView(const LidarFrame& frame,
+                                                                 long current, long past,
+                                                                 const FrameChain& chain) const {
+  for (std::size_t i = 0; i < ranges_.size(); i++) {
+    if (ranges_[i].first != past) continue;
+    if (!p_.enabled || !proj_ || !chain.contains(past) || !chain.contains(current) ||
+        ranges_[i].second.size() != frame.range.size())
+      return std::nullopt;
+    const cv::Mat_<std::uint8_t>& g = grounds_[i];
+    return PastView{&ranges_[i].second, g.size() == frame.range.size() ? &g : nullptr,
+                    chain.between(past, current)};
+  }
+  return std::nullopt;
+}
+
+bool FreeSpaceCheck::sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
+  const Eigen::Vector3d q = view.T * Eigen::Vector3d(p[0], p[1], p[2]);
+  int r = -1, c = -1;
+  if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
+  if (view.ground && (*view.ground)(r, c)) return false;  // the ground under a foot: not it
+  // Half the ray test's tolerance: the same surface, not one a walker passes 0.3 m in front of.
+  const double range = q.norm();
+  return std::abs((*view.ranges)(r, c) - range) <= 0.5 * p_.tolerance(range);
 }
 
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,

@@ -51,6 +51,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("max_growth", max_growth);
   v.value("settle_distance", settle_distance);
   v.value("stop_check", stop_check);
+  v.value("rest_speed", rest_speed);
 }
 
 void HindsightParams::validate() const {
@@ -60,6 +61,7 @@ void HindsightParams::validate() const {
   requireInRange("min_dynamic", min_dynamic, 0, 60);
   requirePositive("max_growth", max_growth);
   requireInRange("settle_distance", settle_distance, 0, 1000);
+  requireInRange("rest_speed", rest_speed, 0, 100);
 }
 
 Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing)
@@ -70,6 +72,7 @@ Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growin
 void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id) {
   owner_.create(f.range.size());
   owner_.setTo(RegionGrower::kFree);
+  RegionGrower::keepOut(r.seen_static, owner_);  // past_surface_check refused them
   if (!grower_.params().keep_out_settled) return;
   for (const TrackedObject& s : r.objects)
     if (s.settled && !s.dynamic && s.id != except_id) RegionGrower::keepOut(s.cluster, owner_);
@@ -187,6 +190,12 @@ bool Hindsight::stoppedAt(const std::vector<Held>& held, const TrackedObject& o)
   // later sweeps that saw it, path_), slower than a quarter of the track's speed (its Kalman
   // velocity, which still has the walk in it for a few sweeps after a stop): it stood here.
   if (path_.size() < kRestSteps + 1 || path_[1].first != 1) return false;  // seen next: a verdict
+  // Or both steps together slower than rest_speed: the net way, in which a centroid's jitter
+  // does not add up, judged like the tracker's stop ([movement] stop_speed).
+  const auto& [j0, p0] = path_[0];
+  const auto& [jn, pn] = path_[kRestSteps];
+  if ((pn - p0).head<2>().norm() < p_.rest_speed * secondsBetween(held[j0], held[jn], jn - j0))
+    return true;
   const double ref = o.velocity.norm();
   for (std::size_t s = 0; s < kRestSteps; s++) {
     const auto& [ja, pa] = path_[s];

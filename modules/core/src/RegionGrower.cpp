@@ -14,6 +14,7 @@ void RegionGrowingParams::visit(ParamVisitor& v) {
   v.value("max_extent", max_extent);
   v.value("max_pixels", max_pixels);
   v.value("keep_out_settled", keep_out_settled);
+  v.value("past_surface_check", past_surface_check);
 }
 
 void RegionGrowingParams::validate() const {
@@ -36,7 +37,8 @@ void RegionGrower::keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner)
 
 std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
                                     const std::vector<std::vector<int>>& seeds,
-                                    cv::Mat_<std::uint8_t>& mask, cv::Mat_<int>& owner) {
+                                    cv::Mat_<std::uint8_t>& mask, cv::Mat_<int>& owner,
+                                    const Admit& admit) {
   const int H = f.rows(), W = f.cols();
   if (mask.size() != f.range.size()) mask = cv::Mat_<std::uint8_t>(H, W, std::uint8_t{0});
   if (owner.size() != f.range.size()) owner = cv::Mat_<int>(H, W, kFree);
@@ -44,6 +46,7 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
   // vertically (between beams) and horizontally (between columns).
   const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
   std::vector<int> counts(seeds.size(), 0);
+  refused_.clear();
   for (std::size_t obj = 0; obj < seeds.size(); obj++) {
     if (seeds[obj].empty()) continue;
     double cx = 0, cy = 0;
@@ -85,6 +88,11 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
           if (static_cast<double>(dx * dx + dy * dy + dz * dz) > eps * eps) continue;
           if (std::abs(f.range(rr, cc) - rng) > p_.distance + p_.depth_factor * rng) continue;
           if (std::hypot(q[0] - cx, q[1] - cy) > extent) continue;
+          if (admit && !admit(obj, rr * W + cc)) {
+            owner(rr, cc) = kKeptOut;
+            refused_.push_back(rr * W + cc);
+            continue;
+          }
           owner(rr, cc) = static_cast<int>(obj);
           mask(rr, cc) = 255;
           queue_.push_back(rr * W + cc);

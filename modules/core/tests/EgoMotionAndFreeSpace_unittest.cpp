@@ -100,6 +100,41 @@ TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
   EXPECT_TRUE(check.evidence(f1, 1, t.clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
 }
 
+TEST(FreeSpaceCheck, SawSurfaceThenTellsWhatThePastFrameSawButNotItsGround) {
+  // The post that stayed was seen then where it is now; the one that arrived was not (the old
+  // ray went through); a floor point is not a surface when the old frame's pixel was ground.
+  Scene before, after;
+  before.posts = {{5, 0, 0.3, 1.8}};
+  after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};
+  TwoFrames t(before, after);
+  const Cluster stayed = t.clusterAt(5, 0), arrived = t.clusterAt(4, 3);
+  ASSERT_FALSE(stayed.pixels.empty());
+  ASSERT_FALSE(arrived.pixels.empty());
+  const auto view = t.check.pastView(t.f1, 1, 0, t.chain);
+  ASSERT_TRUE(view.has_value());
+  for (int px : stayed.pixels) EXPECT_TRUE(t.check.sawSurfaceThen(*view, t.f1.pointAt(px)));
+  for (int px : arrived.pixels) EXPECT_FALSE(t.check.sawSurfaceThen(*view, t.f1.pointAt(px)));
+  EXPECT_FALSE(t.check.pastView(t.f1, 1, 7, t.chain).has_value());  // not kept: no view
+  // A floor pixel of the new frame: seen then at the same place, unless that pixel was ground.
+  int floor_px = -1;
+  for (int r = t.f1.rows() - 1; r >= 0 && floor_px < 0; r--)
+    for (int c = 0; c < t.f1.cols(); c++)
+      if (t.f1.isValid(r, c) && t.f1.xyz(r, c)[2] < -0.95f) {
+        floor_px = r * t.f1.cols() + c;
+        break;
+      }
+  ASSERT_GE(floor_px, 0);
+  EXPECT_TRUE(t.check.sawSurfaceThen(*view, t.f1.pointAt(floor_px)));
+  cv::Mat_<std::uint8_t> ground(t.f0.range.size(), std::uint8_t{0});
+  ground(floor_px / t.f0.cols(), floor_px % t.f0.cols()) = 255;
+  FreeSpaceCheck with_ground;
+  with_ground.remember(0, t.f0, ground);
+  const auto gview = with_ground.pastView(t.f1, 1, 0, t.chain);
+  ASSERT_TRUE(gview.has_value());
+  EXPECT_FALSE(with_ground.sawSurfaceThen(*gview, t.f1.pointAt(floor_px)));
+  for (int px : stayed.pixels) EXPECT_TRUE(with_ground.sawSurfaceThen(*gview, t.f1.pointAt(px)));
+}
+
 TEST(FreeSpaceCheck, ObjectMovingAwayProvesMotionByTheSpaceItLeft) {
   // A post 4 m ahead moves 1 m straight away from the sensor. In the old frame, the space it
   // occupies now was hidden behind it (no verdict); now, the space it left is seen through.

@@ -78,23 +78,38 @@ TEST(RegionGrower, WrapsAroundTheSeamAndRespectsMaxExtent) {
   EXPECT_LT(n[0], cv::countNonZero(mask));
 }
 
+namespace {
+
+/// Two posts touching (centres 0.6 m apart, radius 0.3) 4 m ahead: the frame, its ground and each
+/// post's pixels.
+struct TwoPosts {
+  LidarFrame f;
+  cv::Mat_<std::uint8_t> ground;
+  std::vector<int> first, second;
+  TwoPosts() {
+    Scene scene;
+    scene.posts.push_back({4, 0, 0.3, 1.8});
+    scene.posts.push_back({4, 0.6, 0.3, 1.8});
+    f = dynobj::test::render(scene, dynobj::test::smallSensor(16, 720));
+    GroundSegmenter().segment(f, ground);
+    for (int r = 0; r < f.rows(); r++)
+      for (int c = 0; c < f.cols(); c++) {
+        if (!f.isValid(r, c) || ground(r, c) || f.range(r, c) > 6) continue;
+        (f.xyz(r, c)[1] < 0.3f ? first : second).push_back(r * f.cols() + c);
+      }
+  }
+};
+
+}  // namespace
+
 TEST(RegionGrower, DoesNotTakePixelsKeptOut) {
   // Two posts touching (centres 0.6 m apart, radius 0.3): grown from the first, the region takes
   // the second too; with the second's pixels kept out (an object known to stand still), it
   // stops at them, and they stay kept out, in nobody's mask.
-  Scene scene;
-  scene.posts.push_back({4, 0, 0.3, 1.8});
-  scene.posts.push_back({4, 0.6, 0.3, 1.8});
-  const auto s = dynobj::test::smallSensor(16, 720);
-  const LidarFrame f = dynobj::test::render(scene, s);
-  cv::Mat_<std::uint8_t> ground;
-  GroundSegmenter().segment(f, ground);
-  std::vector<int> first, second;
-  for (int r = 0; r < f.rows(); r++)
-    for (int c = 0; c < f.cols(); c++) {
-      if (!f.isValid(r, c) || ground(r, c) || f.range(r, c) > 6) continue;
-      (f.xyz(r, c)[1] < 0.3f ? first : second).push_back(r * f.cols() + c);
-    }
+  const TwoPosts t;
+  const LidarFrame& f = t.f;
+  const cv::Mat_<std::uint8_t>& ground = t.ground;
+  const std::vector<int>&first = t.first, &second = t.second;
   ASSERT_GT(first.size(), 4u);
   ASSERT_GT(second.size(), 4u);
   cv::Mat_<std::uint8_t> mask;
@@ -115,4 +130,41 @@ TEST(RegionGrower, DoesNotTakePixelsKeptOut) {
   EXPECT_EQ(taken(second), 0u);
   EXPECT_EQ(counts[0], static_cast<int>(first.size()));
   for (int p : second) EXPECT_EQ(owner2(p / f.cols(), p % f.cols()), RegionGrower::kKeptOut);
+}
+
+TEST(RegionGrower, AnAdmissionTestKeepsRefusedPixelsOutOfEveryRegion) {
+  // The two touching posts again: grown from the first with a test that refuses the second's
+  // pixels (past_surface_check: points seen on a surface before the mover came), the region stops
+  // at them, they are kept out and listed in refused(); the test is never asked about a seed.
+  const TwoPosts t;
+  const int W = t.f.cols();
+  ASSERT_GT(t.second.size(), 4u);
+  std::vector<char> on_second(t.f.range.total(), 0);
+  for (int p : t.second) on_second[static_cast<std::size_t>(p)] = 1;
+  int asked_about_seed = 0;
+  const RegionGrower::Admit admit = [&](std::size_t obj, int px) {
+    EXPECT_EQ(obj, 0u);
+    asked_about_seed += px == t.first[0] ? 1 : 0;
+    return !on_second[static_cast<std::size_t>(px)];
+  };
+  cv::Mat_<std::uint8_t> mask;
+  cv::Mat_<int> owner;
+  RegionGrower grower;
+  const auto counts = grower.grow(t.f, t.ground, {{t.first[0]}}, mask, owner, admit);
+  EXPECT_EQ(counts[0], static_cast<int>(t.first.size()));
+  EXPECT_EQ(asked_about_seed, 0);
+  std::size_t taken = 0;
+  for (int p : t.second) taken += mask(p / W, p % W) ? 1 : 0;
+  EXPECT_EQ(taken, 0u);
+  EXPECT_FALSE(grower.refused().empty());
+  for (int p : grower.refused()) {
+    EXPECT_TRUE(on_second[static_cast<std::size_t>(p)]);
+    EXPECT_EQ(owner(p / W, p % W), RegionGrower::kKeptOut);
+  }
+  // Without the test the region takes both posts, and nothing is refused.
+  cv::Mat_<std::uint8_t> mask2;
+  cv::Mat_<int> owner2;
+  EXPECT_EQ(grower.grow(t.f, t.ground, {{t.first[0]}}, mask2, owner2)[0],
+            static_cast<int>(t.first.size() + t.second.size()));
+  EXPECT_TRUE(grower.refused().empty());
 }

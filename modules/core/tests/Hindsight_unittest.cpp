@@ -327,9 +327,11 @@ Sequence standingPost(int n, double speed, double jitter = 0) {
   return seq;
 }
 
+/// settle_distance alone (stop_check off: a post at rest would pass it too).
 HindsightParams settling(double distance) {
   HindsightParams p;
   p.settle_distance = distance;
+  p.stop_check = false;
   return p;
 }
 
@@ -357,7 +359,7 @@ TEST(Hindsight, SettleKeepsAMoverAndDecidesNothingOnAShortViewOrWhenOff) {
   EXPECT_EQ(brief.flagged(0), brief.post[0]);
 
   Sequence off = standingPost(11, 0.0);  // settle_distance = 0 (the default): off
-  EXPECT_EQ(Hindsight().settle(off.held()), 0);
+  EXPECT_EQ(Hindsight(settling(0)).settle(off.held()), 0);
   EXPECT_EQ(off.flagged(0), off.post[0]);
 }
 
@@ -373,19 +375,23 @@ TEST(Hindsight, SettleJudgesInTheWorldAndNotAcrossAFailedEgoMotion) {
   EXPECT_EQ(failed.flagged(0), failed.post[0]);
 }
 
-/// A walker at 1.5 m/s (its track's speed too, in every frame), flagged in every frame, at the
-/// positions `at` (sensor at rest); the frames in which settle() unflags it, each judged as the
-/// oldest held frame (the later ones held behind it, as SequenceRunner does).
-std::vector<std::size_t> unflaggedOnStop(const std::vector<double>& y, bool stop_check) {
+/// A walker flagged in every frame at the positions `at` (sensor at rest), its track's speed
+/// `speed` in each frame (1.5 m/s in every frame when empty); the frames in which settle()
+/// unflags it, each judged as the oldest held frame (the later ones held behind it, as
+/// SequenceRunner does).
+std::vector<std::size_t> unflaggedOnStop(const std::vector<double>& y, bool stop_check,
+                                         double rest_speed = 0,
+                                         const std::vector<double>& speed = {}) {
   std::vector<Eigen::Vector2d> at;
   for (double v : y) at.emplace_back(4, v);
   Sequence seq(at, forward(0), y.size());
-  for (DetectionResult& r : seq.results) {
-    r.ego_motion.ok = true;
-    r.objects[0].velocity = Eigen::Vector2d(0, 1.5);
+  for (std::size_t j = 0; j < seq.results.size(); j++) {
+    seq.results[j].ego_motion.ok = true;
+    seq.results[j].objects[0].velocity = Eigen::Vector2d(0, speed.empty() ? 1.5 : speed[j]);
   }
   HindsightParams p;
   p.stop_check = stop_check;
+  p.rest_speed = rest_speed;
   std::vector<std::size_t> out;
   for (std::size_t k = 0; k + 1 < y.size(); k++) {
     std::vector<Hindsight::Held> held = seq.held();
@@ -415,8 +421,30 @@ TEST(Hindsight, StopCheckUnflagsTheSweepsWhereAWalkerHadStopped) {
             (std::vector<std::size_t>{2, 3, 4}));
 }
 
+TEST(Hindsight, RestSpeedJudgesTheNetWayOutOfASweepAfterTheTracksSpeedHasFallen) {
+  // Walks into frame 3, then stands with its centroid jittering by 0.02-0.03 m per frame while
+  // the tracker's speed falls (0.6 m/s in frame 4 down to 0.1): a quarter of it is below the
+  // jitter, so the quarter rule unflags frame 3 only (1.2 m/s then); both steps together moved
+  // 0.015 m at most (0.075 m/s), below rest_speed. Frame 7 has one step left: no verdict.
+  const std::vector<double> jitter{-1.2, -1.05, -0.9, -0.75, -0.73, -0.755, -0.735, -0.745, -0.74};
+  const std::vector<double> speed{1.5, 1.5, 1.5, 1.2, 0.6, 0.4, 0.2, 0.1, 0.1};
+  EXPECT_EQ(unflaggedOnStop(jitter, true, 0, speed), (std::vector<std::size_t>{3}));
+  EXPECT_EQ(unflaggedOnStop(jitter, true, 0.3, speed), (std::vector<std::size_t>{3, 4, 5, 6}));
+  EXPECT_TRUE(unflaggedOnStop(jitter, false, 0.3, speed).empty());  // stop_check off: nothing
+  // A walker at 0.5 m/s (0.05 m per step, 0.1 m over two) is still walking; so is one who
+  // pauses for one step.
+  EXPECT_TRUE(unflaggedOnStop({-1.0, -0.95, -0.9, -0.85, -0.8, -0.75}, true, 0.3,
+                              {0.5, 0.5, 0.5, 0.5, 0.5, 0.5})
+                  .empty());
+  EXPECT_TRUE(
+      unflaggedOnStop({-1.2, -1.05, -0.9, -0.75, -0.75, -0.6, -0.45, -0.3}, true, 0.3).empty());
+}
+
 TEST(Hindsight, SettleDistanceIsValidated) {
   HindsightParams p;
   p.settle_distance = -0.1;
   EXPECT_THROW(p.validate(), ParameterError);
+  HindsightParams q;
+  q.rest_speed = -1;
+  EXPECT_THROW(q.validate(), ParameterError);
 }

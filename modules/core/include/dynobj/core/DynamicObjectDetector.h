@@ -108,6 +108,9 @@ struct DetectionResult {
   cv::Mat_<std::uint8_t> seeds;        ///< points of the accepted clusters (region-growing seeds)
   cv::Mat_<std::uint8_t> ground;       ///< 255 = ground pixel (region growing never enters it)
   std::vector<TrackedObject> objects;  ///< tracks seen this frame
+  /// pixels region growing refused (past_surface_check: the lookback frame saw a surface there
+  /// and the mover was elsewhere); hindsight's growth keeps them out too
+  std::vector<int> seen_static;
   EgoMotion ego_motion;
   StageTimings timings;
 
@@ -141,6 +144,11 @@ class DynamicObjectDetector {
   /// dynamic ones and the weak seeds of coasting dynamic tracks, also marked in result_.seeds
   /// (their track ids in seed_track_).
   std::vector<std::vector<int>> dynamicSeeds(const LidarFrame& frame, double dt);
+  /// Beyond the paper (§8, [region_growing] past_surface_check): the test region growing asks of
+  /// each pixel beyond the seeds: not a point the lookback frame saw on a surface, for an object
+  /// that has travelled farther than its own extent since then. Empty when off or without it.
+  RegionGrower::Admit pastSurfaceTest(const LidarFrame& frame, double dt,
+                                      const std::vector<std::vector<int>>& seeds) const;
   /// Objects of the result, history for the next frame.
   void endFrame(const LidarFrame& frame, const std::vector<int>& grown);
   void collectObjects(const LidarFrame& frame, const std::vector<int>& grown);

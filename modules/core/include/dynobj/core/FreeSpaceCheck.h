@@ -80,7 +80,7 @@ class FreeSpaceCheck {
   explicit FreeSpaceCheck(const FreeSpaceParams& p = {}, std::size_t history = 16);
 
   /// Keeps this frame's range image (bounded history).
-  void remember(long index, const LidarFrame& frame);
+  void remember(long index, const LidarFrame& frame, const cv::Mat_<std::uint8_t>& ground = {});
   /// Evidence for `cluster` (pixels of `frame`, frame index `current`) against frame `past`.
   /// When that gives no verdict and `shift` (the cluster's displacement from `past` to
   /// `current`, in the current frame [m]) is given, the space it left is tested instead: its
@@ -100,6 +100,19 @@ class FreeSpaceCheck {
               const FrameChain& chain, double dt, MovementDecision& d) const;
   const FreeSpaceParams& params() const { return p_; }
 
+  /// The range image of frame `past` and the transform T_{past<-current} of frame `current`'s
+  /// points into it, when both are kept and the sizes agree.
+  struct PastView {
+    const cv::Mat_<float>* ranges = nullptr;
+    const cv::Mat_<std::uint8_t>* ground = nullptr;  ///< its ground pixels, if remembered
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  };
+  std::optional<PastView> pastView(const LidarFrame& frame, long current, long past,
+                                   const FrameChain& chain) const;
+  /// Did that past frame see a surface other than the ground at the current frame's point `p`
+  /// (within the tolerance)?
+  bool sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const;
+
  private:
   /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless
   /// that went `through` (beyond the point's range plus tolerance); then the nearest of it and
@@ -112,7 +125,8 @@ class FreeSpaceCheck {
   FreeSpaceParams p_;
   std::size_t history_;
   std::deque<std::pair<long, cv::Mat_<float>>> ranges_;
-  std::optional<SphericalProjection> proj_;  ///< Eq. (1) for the remembered frames' sensor
+  std::deque<cv::Mat_<std::uint8_t>> grounds_;  ///< each remembered frame's ground (or empty)
+  std::optional<SphericalProjection> proj_;     ///< Eq. (1) for the remembered frames' sensor
 };
 
 }  // namespace dynobj::core

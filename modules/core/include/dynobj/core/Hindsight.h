@@ -42,6 +42,10 @@ struct HindsightParams : public StageParams {
   /// the two steps to the next sweeps that saw it, slower than a quarter of its track's speed (a
   /// walker who stopped just before the sweep; false = keep it flagged, as before Session 17)
   bool stop_check = true;
+  /// [m/s] stop_check also unflags an object whose two steps out, taken together, moved slower
+  /// than this (its centroid's jitter, 0.01-0.05 m per sweep, beats a quarter of a speed that
+  /// the track's filter has already let fall after the stop); 0 = only the quarter rule
+  double rest_speed = 0.3;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -69,10 +73,10 @@ class Hindsight {
   /// `held`: one sensor's held frames, oldest first; the oldest is about to be written. Unflags
   /// there the dynamic objects that stood there (stop_check: the two steps to the next sweeps
   /// that see its track, the first of them the next held frame, each slower than a quarter of
-  /// its track's speed), and those whose tracks, seen from that frame, get no farther than
-  /// settle_distance from where they are in any later held frame, when the last of those is at
-  /// least lag / 2 later: a mover must get somewhere (swaying foliage, a walker who stopped).
-  /// Returns the objects unflagged.
+  /// its track's speed, or both together slower than rest_speed), and those whose tracks, seen from
+  /// that frame, get no farther than settle_distance from where they are in any later held frame,
+  /// when the last of those is at least lag / 2 later: a mover must get somewhere (swaying foliage,
+  /// a walker who stopped). Returns the objects unflagged.
   int settle(const std::vector<Held>& held);
 
   /// Frames a run holds for a sensor at `frequency` [Hz] (0 when lag = 0).

@@ -6,6 +6,7 @@
 // never entering ground pixels, until nothing is added. The image wraps around horizontally.
 #pragma once
 
+#include <functional>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct RegionGrowingParams : public StageParams {
   /// a mover's region does not take the points of an object whose track was judged static
   /// settled_frames ([tracking]) times in a row: a walker passing someone who stands
   bool keep_out_settled = true;
+  /// a mover's region does not take a point that the free-space check's lookback frame saw on
+  /// a surface, when the mover has since travelled farther than its own extent (so it was not
+  /// there itself): a crate, a pillar or a parked car it touches. Beyond the paper (§8)
+  bool past_surface_check = true;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -42,18 +47,25 @@ class RegionGrower {
   /// Grows every object's seeds (pixel indices row * W + col) over `frame`, skipping `ground`
   /// pixels. Adds the grown pixels to `mask` (255); `owner` (CV_32S, kFree = none) tells which
   /// object (index into `seeds`) took each pixel; only kFree pixels are taken, so pixels taken
-  /// by an earlier call or kept out stay theirs. Returns the pixel count of each object.
+  /// by an earlier call or kept out stay theirs. `admit` (optional), asked of each pixel a
+  /// region would take beyond its seeds (object index, pixel index): false keeps the pixel out
+  /// of every region (owner kKeptOut). Returns the pixel count of each object.
+  using Admit = std::function<bool(std::size_t, int)>;
   std::vector<int> grow(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& ground,
                         const std::vector<std::vector<int>>& seeds, cv::Mat_<std::uint8_t>& mask,
-                        cv::Mat_<int>& owner);
+                        cv::Mat_<int>& owner, const Admit& admit = {});
 
   /// Marks `pixels` (row * W + col) of a sized `owner` kept out of the next grow(): the points
   /// of an object known to stand still, which a mover beside it must not take.
   static void keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner);
 
+  /// The pixels the last grow() kept out because `admit` refused them.
+  const std::vector<int>& refused() const { return refused_; }
+
  private:
   RegionGrowingParams p_;
   std::vector<int> queue_;
+  std::vector<int> refused_;
 };
 
 }  // namespace dynobj::core
