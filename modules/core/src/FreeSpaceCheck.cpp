@@ -94,11 +94,14 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 
 }  // namespace
 
-bool FreeSpaceCheck::sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q) const {
+bool FreeSpaceCheck::sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q,
+                                double tolerance_scale,
+                                const cv::Mat_<std::uint8_t>* ground) const {
   int r = -1, c = -1;
   if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
+  if (ground && (*ground)(r, c)) return false;
   const double range = q.norm();
-  return std::abs(seen(r, c) - range) <= p_.tolerance(range);
+  return std::abs(seen(r, c) - range) <= tolerance_scale * p_.tolerance(range);
 }
 
 double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const {
@@ -173,13 +176,9 @@ std::optional<FreeSpaceCheck::PastView> FreeSpaceCheck::pastView(const LidarFram
 }
 
 bool FreeSpaceCheck::sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
-  const Eigen::Vector3d q = view.T * Eigen::Vector3d(p[0], p[1], p[2]);
-  int r = -1, c = -1;
-  if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
-  if (view.ground && (*view.ground)(r, c)) return false;  // the ground under a foot: not it
-  // Half the ray test's tolerance: the same surface, not one a walker passes 0.3 m in front of.
-  const double range = q.norm();
-  return std::abs((*view.ranges)(r, c) - range) <= 0.5 * p_.tolerance(range);
+  // Half the ray test's tolerance: the same surface, not one a walker passes 0.3 m in front of;
+  // the ground under a foot is not it.
+  return sawSurface(*view.ranges, view.T * Eigen::Vector3d(p[0], p[1], p[2]), 0.5, view.ground);
 }
 
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,
@@ -187,13 +186,10 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
                                            const FrameChain& chain,
                                            const std::optional<Eigen::Vector3d>& shift) const {
   FreeSpaceEvidence e;
-  const cv::Mat_<float>* old = nullptr;
-  for (const auto& [idx, r] : ranges_)
-    if (idx == past) old = &r;
-  if (!p_.enabled || !old || !proj_ || !chain.contains(past) || !chain.contains(current) ||
-      old->size() != frame.range.size())
-    return e;
-  const Eigen::Isometry3d T = chain.between(past, current);  // current -> past frame
+  const std::optional<PastView> view = pastView(frame, current, past, chain);
+  if (!view) return e;
+  const cv::Mat_<float>* old = view->ranges;
+  const Eigen::Isometry3d& T = view->T;  // current -> past frame
   // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
   // a free vote counts only where `free_if` holds for the placed point (else unknown).
   auto testRays = [&](const auto& place, const cv::Mat_<float>& seen, const auto& free_if) {

@@ -119,8 +119,11 @@ class FreeSpaceCheck {
   /// the returning rays up to side_rays columns beside it and side_rows rows above and below it
   /// (at the point: occupied; nearer: hidden).
   double rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const;
-  /// Did the range image `seen` meet a surface at `q` (its own frame), within the tolerance?
-  bool sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q) const;
+  /// Did the range image `seen` meet a surface at `q` (its own frame), within tolerance_scale x
+  /// the tolerance, at a pixel that is not `ground` (when given)?
+  bool sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q,
+                  double tolerance_scale = 1.0,
+                  const cv::Mat_<std::uint8_t>* ground = nullptr) const;
 
   FreeSpaceParams p_;
   std::size_t history_;
