@@ -101,6 +101,12 @@ ABLATIONS=(
   "every feature in the search (no 17 cm voxel reduction)|[clustering]\nvoxel = 0\n"
   "faster ego-motion: 400 ORB features, FAST threshold 20|[ego_motion]\nfeatures = 400\nfast_threshold = 20\n"
   "RANSAC: 200 fixed samples, no refits (the previous default)|[ego_motion]\nconfidence = 1\nrefinements = 0\n"
+  "no split of a cluster holding a mover and an object at rest (\`[association] split_radius = 0\`) — before Session 20|[association]\nsplit_radius = 0\n"
+  "a sliding rigid cluster needs no more free space than any other (\`[free_space] slide_free_ratio = 0\`) — before Session 20|[free_space]\nslide_free_ratio = 0\n"
+  "hindsight's stop check on the quarter rule only (\`[hindsight] rest_speed = 0\`) — before Session 21|[hindsight]\nrest_speed = 0\n"
+  "region growing may take what the lookback frame saw (\`[region_growing] past_surface_check = false\`) — before Session 21|[region_growing]\npast_surface_check = false\n"
+  "3-D centroid steps, as the paper (\`[movement] planar = false\`)|[movement]\nplanar = false\n"
+  "3-D centroid steps and ε_d = 0.25 m (\`planar = false\`, \`min_displacement = 0.25\`) — before Session 22|[movement]\nplanar = false\nmin_displacement = 0.25\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

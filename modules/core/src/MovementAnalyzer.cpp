@@ -16,6 +16,7 @@ void MovementParams::visit(ParamVisitor& v) {
   v.value("stop_speed", stop_speed);
   v.value("min_displacement", min_displacement);
   v.value("min_straightness", min_straightness);
+  v.value("planar", planar);
   v.degrees("long_object_angle", long_object_angle);
   v.value("long_object_elongation", long_object_elongation);
   v.value("long_object_length", long_object_length);
@@ -81,6 +82,8 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   cw.reserve(k);
   for (std::size_t j = window.size() - k; j < window.size(); j++)
     cw.push_back(chain.between(first, window[j].frame) * window[j].centroid);
+  if (p_.planar)
+    for (Eigen::Vector3d& c : cw) c.z() = 0;
 
   const Eigen::Isometry3d T_first_last = chain.between(first, last);  // current -> first
   d.displacement = (cw.back() - cw.front()).norm();                   // Eq. (19)

@@ -7,6 +7,7 @@
 #include <dynobj/core/TrackManager.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 using namespace dynobj::core;
@@ -205,6 +206,35 @@ TEST(MovementAnalyzer, AStopShowsInTheLastObservationsBeforeTheWindowForgetsTheW
     walk.emplace_back(i, V3(5 - 0.1 * static_cast<double>(i), 0.15 * static_cast<double>(i), 0));
   p.stop_speed = 0.3;
   EXPECT_TRUE(MovementAnalyzer(p).analyse(walk, chain, compact(), 0.1).moving());
+}
+
+TEST(MovementAnalyzer, AHeightThatJittersWithTheFeaturesIsNotDrift) {
+  // A far walker's few features sit on its head one sweep and its legs the next: the centroid's
+  // height jumps 0.5 m while it walks 0.1 m/frame (world, along Y) past the moving sensor.
+  MovementParams p;
+  p.window = 5;
+  p.min_window = 5;
+  p.min_displacement = 0.25;
+  const FrameChain chain = walkingChain(5);
+  Window w, still;
+  for (long i = 0; i < 5; i++) {
+    const double z = i % 2 == 0 ? -0.5 : -1.0, x = 5 - 0.1 * static_cast<double>(i);
+    w.emplace_back(i, V3(x, 0.1 * static_cast<double>(i), z));
+    still.emplace_back(i, V3(x, 2, i < 4 ? -0.5 : -1.0));  // a post: its features drop
+  }
+  const auto d = MovementAnalyzer(p).analyse(w, chain, compact(), 0.1);
+  EXPECT_NEAR(d.displacement, 0.4, 1e-9);
+  EXPECT_NEAR(d.path, 0.4, 1e-9);  // horizontal steps only
+  EXPECT_TRUE(d.moving());
+  EXPECT_NEAR(d.velocity.z(), 0, 1e-12);
+  EXPECT_FALSE(MovementAnalyzer(p).analyse(still, chain, compact(), 0.1).candidate);
+  p.planar = false;  // the paper's 3-D centroids: four 0.51 m steps for 0.4 m of way, drift
+  const auto paper = MovementAnalyzer(p).analyse(w, chain, compact(), 0.1);
+  EXPECT_NEAR(paper.path, 4 * std::hypot(0.1, 0.5), 1e-9);
+  EXPECT_TRUE(paper.drift);
+  EXPECT_FALSE(paper.moving());
+  // ... and the post, whose features went from its top to its foot, "moved" 0.5 m straight.
+  EXPECT_TRUE(MovementAnalyzer(p).analyse(still, chain, compact(), 0.1).moving());
 }
 
 TEST(TrackManager, AStoppedTrackIsReleasedAtOnce) {

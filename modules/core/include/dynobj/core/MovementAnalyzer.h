@@ -30,8 +30,15 @@ struct MovementParams : public StageParams {
   int stop_window = 3;  ///< beyond the paper: a track whose last stop_window observations ...
   double stop_speed = 0.3;  ///< ... moved slower than this [m/s] has stopped: not moving, and a
                             ///< dynamic track is released at once (no hysteresis); 0 = off
-  double min_displacement = 0.25;                ///< epsilon_d [m] over the window
-  double min_straightness = 0.5;                 ///< epsilon_o: f / f_a below this is drift
+  /// epsilon_d [m] over the window: 0.2 m in the k - 1 = 4 steps of 0.1 s is 0.5 m/s, hindsight's
+  /// min_speed (0.25 before Session 22, with 3-D steps: a walker's height jitter made up the rest)
+  double min_displacement = 0.2;
+  double min_straightness = 0.5;  ///< epsilon_o: f / f_a below this is drift
+  /// Beyond the paper: f and f_a over the centroids' horizontal steps (the x-y plane of the
+  /// window's first sensor frame). A cluster's height jitters with the features it holds (a far
+  /// walker's 3..10 features sit on its head one sweep and its legs the next), which adds to f_a
+  /// and reads as drift; things move along the ground. false = 3-D steps, the paper.
+  bool planar = true;
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
   double long_object_elongation = 1.0;           ///< only clusters at least this elongated ...
   double long_object_length = 0.0;               ///< ... and this long [m] are tested for Eq. (23)
