@@ -107,6 +107,7 @@ ABLATIONS=(
   "region growing may take what the lookback frame saw (\`[region_growing] past_surface_check = false\`) — before Session 21|[region_growing]\npast_surface_check = false\n"
   "3-D centroid steps, as the paper (\`[movement] planar = false\`)|[movement]\nplanar = false\n"
   "3-D centroid steps and ε_d = 0.25 m (\`planar = false\`, \`min_displacement = 0.25\`) — before Session 22|[movement]\nplanar = false\nmin_displacement = 0.25\n"
+  "a track starts from 4 features (\`[clustering] min_points = 4\`) — before Session 22|[clustering]\nmin_points = 4\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini
