@@ -61,20 +61,16 @@ void FreeSpaceCheck::remember(long index, const LidarFrame& frame,
   if (!p_.enabled) return;
   if (!proj_ || proj_->sensor().rows != frame.rows() || proj_->sensor().cols != frame.cols())
     proj_.emplace(frame.sensor);     // built once, not per candidate
-  if (ranges_.size() >= history_) {  // recycle the oldest buffers
-    auto oldest = std::move(ranges_.front());
-    ranges_.pop_front();
-    frame.range.copyTo(oldest.second);
-    oldest.first = index;
-    ranges_.push_back(std::move(oldest));
-    cv::Mat_<std::uint8_t> g = std::move(grounds_.front());
-    grounds_.pop_front();
-    ground.copyTo(g);
-    grounds_.push_back(std::move(g));
+  if (frames_.size() >= history_) {  // recycle the oldest buffers
+    Remembered oldest = std::move(frames_.front());
+    frames_.pop_front();
+    oldest.index = index;
+    frame.range.copyTo(oldest.range);
+    ground.copyTo(oldest.ground);
+    frames_.push_back(std::move(oldest));
     return;
   }
-  ranges_.emplace_back(index, frame.range.clone());
-  grounds_.push_back(ground.clone());
+  frames_.push_back({index, frame.range.clone(), ground.clone()});
 }
 
 namespace {
@@ -163,13 +159,13 @@ double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpa
 std::optional<FreeSpaceCheck::PastView> FreeSpaceCheck::pastView(const LidarFrame& frame,
                                                                  long current, long past,
                                                                  const FrameChain& chain) const {
-  for (std::size_t i = 0; i < ranges_.size(); i++) {
-    if (ranges_[i].first != past) continue;
+  for (const Remembered& m : frames_) {
+    if (m.index != past) continue;
     if (!p_.enabled || !proj_ || !chain.contains(past) || !chain.contains(current) ||
-        ranges_[i].second.size() != frame.range.size())
+        m.range.size() != frame.range.size())
       return std::nullopt;
-    const cv::Mat_<std::uint8_t>& g = grounds_[i];
-    return PastView{&ranges_[i].second, g.size() == frame.range.size() ? &g : nullptr,
+    const cv::Mat_<std::uint8_t>& g = m.ground;
+    return PastView{&m.range, g.size() == frame.range.size() ? &g : nullptr,
                     chain.between(past, current)};
   }
   return std::nullopt;

@@ -127,9 +127,14 @@ class FreeSpaceCheck {
 
   FreeSpaceParams p_;
   std::size_t history_;
-  std::deque<std::pair<long, cv::Mat_<float>>> ranges_;
-  std::deque<cv::Mat_<std::uint8_t>> grounds_;  ///< each remembered frame's ground (or empty)
-  std::optional<SphericalProjection> proj_;     ///< Eq. (1) for the remembered frames' sensor
+  /// A remembered frame: its index, range image and ground pixels (empty when not given).
+  struct Remembered {
+    long index = 0;
+    cv::Mat_<float> range;
+    cv::Mat_<std::uint8_t> ground;
+  };
+  std::deque<Remembered> frames_;
+  std::optional<SphericalProjection> proj_;  ///< Eq. (1) for the remembered frames' sensor
 };
 
 }  // namespace dynobj::core

@@ -87,7 +87,8 @@ class Hindsight {
   HindsightParams p_;
   RegionGrower grower_;
   cv::Mat_<int> owner_;
-  /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) kept out.
+  /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) and the
+  /// pixels its region growing refused (`seen_static`) kept out.
   void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);
   /// start_check for the track's object `then` at held frame j (position `here`, in the newest
   /// frame's coordinates, T_jk their transform into frame j), path_ holding its later positions.
