@@ -108,6 +108,8 @@ ABLATIONS=(
   "3-D centroid steps, as the paper (\`[movement] planar = false\`)|[movement]\nplanar = false\n"
   "3-D centroid steps and ε_d = 0.25 m (\`planar = false\`, \`min_displacement = 0.25\`) — before Session 22|[movement]\nplanar = false\nmin_displacement = 0.25\n"
   "a track starts from 4 features (\`[clustering] min_points = 4\`) — before Session 22|[clustering]\nmin_points = 4\n"
+  "the ground beside a point counts against it however high the point (\`[free_space] clearance = 100\`) — before Session 23|[free_space]\nclearance = 100\n"
+  "no older frame for a slow candidate (\`[free_space] max_lookback = 0\`) — before Session 23|[free_space]\nmax_lookback = 0\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

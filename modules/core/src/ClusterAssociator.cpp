@@ -14,6 +14,7 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("new_track_speed", new_track_speed);
   v.value("new_track_length", new_track_length);
   v.value("split_radius", split_radius);
+  v.value("split_min_share", split_min_share);
 }
 
 void AssociationParams::validate() const {
@@ -21,6 +22,7 @@ void AssociationParams::validate() const {
   requireInRange("new_track_speed", new_track_speed, 0, 100);
   requireInRange("new_track_length", new_track_length, 0, 100);
   requireInRange("split_radius", split_radius, 0, 10);
+  requireInRange("split_min_share", split_min_share, 0, 0.5);
 }
 
 ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {

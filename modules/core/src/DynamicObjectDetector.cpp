@@ -86,15 +86,16 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       clusterer_(params.clustering),
       associator_(params.association),
       movement_(params.movement),
-      free_space_(params.free_space, static_cast<std::size_t>(params.free_space.lookback + 1)),
+      free_space_(params.free_space, static_cast<std::size_t>(params.free_space.history() + 1)),
       tracks_(params.tracking, params.movement.window),
       grower_(params.region_growing),
       split_{params.association.split_radius,
              params.clustering.horizontal_distance / params.clustering.vertical_distance,
-             params.clustering.horizontal_distance, params.clustering.min_points},
+             params.clustering.horizontal_distance, params.clustering.min_points,
+             params.association.split_min_share},
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
-                   params.free_space.lookback + 2))),
+                   params.free_space.history() + 2))),
       worker_(params.pipeline.threads > 1 && std::thread::hardware_concurrency() > 1) {
   params_.validate();
 }
@@ -265,8 +266,8 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     if (tr.cluster < 0) continue;
     const Cluster& c = clusters_[static_cast<std::size_t>(tr.cluster)];
     MovementDecision d = movement_.analyse(tr.window, chain_, c, dt);
-    free_space_.review(frame, frame_index_, c, chain_, dt, d);  // beyond the paper
-    tracks_.decide(tr, d);                                      // with hysteresis
+    free_space_.review(frame, frame_index_, c, chain_, dt, d, result_.ground);  // beyond the paper
+    tracks_.decide(tr, d);                                                      // with hysteresis
     if (!tr.dynamic) continue;
     seeds.push_back(c.pixels);
     seed_track_.push_back(tr.id);

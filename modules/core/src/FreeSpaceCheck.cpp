@@ -16,10 +16,15 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("min_evidence", min_evidence);
   v.value("require_proof", require_proof);
   v.value("lookback", lookback);
+  v.value("max_lookback", max_lookback);
+  v.value("clear_tolerances", clear_tolerances);
+  v.value("max_travel", max_travel);
   v.value("side_rays", side_rays);
   v.value("side_rows", side_rows);
   v.value("min_solid_ratio", min_solid_ratio);
   v.value("slide_free_ratio", slide_free_ratio);
+  v.value("clearance", clearance);
+  v.value("release_free_ratio", release_free_ratio);
 }
 
 void FreeSpaceParams::validate() const {
@@ -28,10 +33,15 @@ void FreeSpaceParams::validate() const {
   requireInRange("min_free_ratio", min_free_ratio, 0, 1);
   requireInRange("min_evidence", min_evidence, 0, 1000000);
   requireInRange("lookback", lookback, 1, 1000);
+  requireInRange("max_lookback", max_lookback, 0, 1000);
+  requireInRange("clear_tolerances", clear_tolerances, 0, 100);
+  requirePositive("max_travel", max_travel);
   requireInRange("side_rays", side_rays, 0, 100);
   requireInRange("side_rows", side_rows, 0, 100);
   requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
   requireInRange("slide_free_ratio", slide_free_ratio, 0, 1);
+  requireInRange("clearance", clearance, 0, 100);
+  requireInRange("release_free_ratio", release_free_ratio, 0, 1);
 }
 
 namespace {
@@ -100,21 +110,24 @@ bool FreeSpaceCheck::sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector
   return std::abs(seen(r, c) - range) <= tolerance_scale * p_.tolerance(range);
 }
 
-double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const {
+double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through,
+                                 double height, const cv::Mat_<std::uint8_t>* ground) const {
   const double own = seen(r, c);
   if (own <= through) return own;  // it did not go through: its own ray decides
   const int W = seen.cols;
   double nearest = own;
-  for (int dc = -p_.side_rays; dc <= p_.side_rays; ++dc) {
-    const float n = seen(r, ((c + dc) % W + W) % W);
-    if (n > 0) nearest = std::min<double>(nearest, n);
-  }
+  auto consider = [&](int rr, int cc) {
+    const float n = seen(rr, cc);
+    if (n <= 0) return;
+    // The ground under a point well above it (a car's bumper) is not the point's surface.
+    if (ground && (*ground)(rr, cc) && height - n * proj_->sinElevationOfRow(rr) > p_.clearance)
+      return;
+    nearest = std::min<double>(nearest, n);
+  };
+  for (int dc = -p_.side_rays; dc <= p_.side_rays; ++dc) consider(r, ((c + dc) % W + W) % W);
   for (int dr = 1; dr <= p_.side_rows; ++dr)
-    for (const int rr : {r - dr, r + dr}) {
-      if (rr < 0 || rr >= seen.rows) continue;
-      const float n = seen(rr, c);
-      if (n > 0) nearest = std::min<double>(nearest, n);
-    }
+    for (const int rr : {r - dr, r + dr})
+      if (rr >= 0 && rr < seen.rows) consider(rr, c);
   return nearest;
 }
 
@@ -180,7 +193,8 @@ bool FreeSpaceCheck::sawSurfaceThen(const PastView& view, const cv::Vec3f& p) co
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,
                                            const Cluster& cluster, long past,
                                            const FrameChain& chain,
-                                           const std::optional<Eigen::Vector3d>& shift) const {
+                                           const std::optional<Eigen::Vector3d>& shift,
+                                           const cv::Mat_<std::uint8_t>& ground) const {
   FreeSpaceEvidence e;
   const std::optional<PastView> view = pastView(frame, current, past, chain);
   if (!view) return e;
@@ -188,7 +202,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const Eigen::Isometry3d& T = view->T;  // current -> past frame
   // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
   // a free vote counts only where `free_if` holds for the placed point (else unknown).
-  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen, const auto& free_if) {
+  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen,
+                      const cv::Mat_<std::uint8_t>* seen_ground, const auto& free_if) {
     for (int px : cluster.pixels) {
       const cv::Vec3f& p = frame.pointAt(px);
       const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
@@ -199,36 +214,65 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
       }
       const double expected = q.norm(), tol = p_.tolerance(expected);
       FreeSpaceEvidence one;
-      tally(one, rayBeside(seen, r, c, expected + tol), expected, tol);
+      tally(one, rayBeside(seen, r, c, expected + tol, q.z(), seen_ground), expected, tol);
       if (one.free > 0 && !free_if(q)) one = {0, 0, 1};
       e.free += one.free;
       e.occupied += one.occupied;
       e.unknown += one.unknown;
     }
   };
-  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old,
+  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old, view->ground,
            [](const Eigen::Vector3d&) { return true; });
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
   // No verdict (hidden then): the space it left, moved back by `shift`. Still occupied now
   // refutes the motion. Seen through now proves it only where the old frame saw a surface there
   // (the object itself): the space in front of a static object that only seems to recede, as it
   // comes out from behind an occluder, is seen through too.
+  const bool ground_now = ground.size() == frame.range.size();
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range,
+           ground_now ? &ground : nullptr,
            [&](const Eigen::Vector3d& left) { return sawSurface(*old, T * left); });
   return e;
 }
 
+long FreeSpaceCheck::lookbackFor(const Cluster& cluster, const MovementDecision& d,
+                                 const FrameChain& chain, long current, double dt) const {
+  const double speed = d.velocity.head<2>().norm();
+  if (p_.max_lookback <= p_.lookback || p_.clear_tolerances <= 0 || speed <= 0 || dt <= 0)
+    return p_.lookback;
+  // Far enough back that the candidate has moved clear_tolerances x the range tolerance: a
+  // walker 20 m away moves 1 m in a second, barely more than the 0.7 m its ranges agree within.
+  const double need = p_.clear_tolerances * p_.tolerance(cluster.centroid.norm());
+  long k = static_cast<long>(
+      std::clamp<double>(std::ceil(need / (speed * dt)), p_.lookback, p_.max_lookback));
+  // ... from a frame the chain still holds, and not from farther than max_travel away: from
+  // there, thin and grazing surfaces fall between the rays and look seen through.
+  const long held = chain.contains(current) ? current - chain.oldest() : 0;
+  while (k > p_.lookback &&
+         (k > held || chain.between(current - k, current).translation().norm() > p_.max_travel))
+    k--;
+  return k;
+}
+
 void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster& cluster,
-                            const FrameChain& chain, double dt, MovementDecision& d) const {
+                            const FrameChain& chain, double dt, MovementDecision& d,
+                            const cv::Mat_<std::uint8_t>& ground) const {
   if (!d.moving()) return;
-  const long past = std::max(chain.oldest(), current - p_.lookback);
-  const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
-  const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift);
-  // Every candidate must prove its motion (require_proof); without it, a rigid mover exempted
-  // from Eq. (23) and a young track judged on a short window must, and any other candidate is
-  // only refuted by the evidence.
   const bool must_prove = p_.require_proof || d.rigid || d.early;
-  d.static_surface = must_prove ? !e.provesMotion(p_, d.slides) : !e.supportsMotion(p_, d.slides);
+  bool clearly = true;  // every frame tried saw hardly any of its space free
+  auto refuted = [&](long back) {
+    const long past = std::max(chain.oldest(), current - back);
+    const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
+    const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift, ground);
+    const int decisive = e.free + e.occupied;
+    clearly = clearly && decisive >= p_.min_evidence && e.free < p_.release_free_ratio * decisive;
+    return must_prove ? !e.provesMotion(p_, d.slides) : !e.supportsMotion(p_, d.slides);
+  };
+  // A slow candidate refuted by the usual frame may still prove its motion against an older one
+  // (lookbackFor): its own earlier place may lie within the usual frame's tolerance.
+  const long back = lookbackFor(cluster, d, chain, current, dt);
+  d.static_surface = refuted(p_.lookback) && (back == p_.lookback || refuted(back));
+  d.refuted = d.static_surface && clearly;
   // Seen through: only asked of a candidate the evidence above left standing.
   d.porous = !d.static_surface && p_.min_solid_ratio > 0 &&
              solidRatio(frame, cluster, p_) < p_.min_solid_ratio;

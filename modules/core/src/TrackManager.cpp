@@ -130,7 +130,9 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
     t.dynamic = moving;
     return;
   }
-  if (d.stopped && t.dynamic) {  // a clear stop: released at once, hysteresis would lag it
+  // A clear stop, or a space that was clearly occupied already: released at once, hysteresis
+  // would lag it.
+  if ((d.stopped || d.refuted) && t.dynamic) {
     t.dynamic = false;
     t.positives = 0;
     t.negatives = p_.release_frames;

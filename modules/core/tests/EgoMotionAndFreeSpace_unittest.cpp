@@ -100,6 +100,38 @@ TEST(FreeSpaceCheck, MovedInVersusAlreadyThere) {
   EXPECT_TRUE(check.evidence(f1, 1, t.clusterAt(5, 0), 7, chain).supportsMotion(check.params()));
 }
 
+TEST(FreeSpaceCheck, ASpaceClearlyOccupiedAlreadyRefutesForGood) {
+  // review(): the post that stayed is refuted with no free point at all (refuted: released at
+  // once); the one that arrived is a mover; without any earlier frame there is no evidence, so
+  // the candidate is not a mover (require_proof) but not clearly refuted either.
+  Scene before, after;
+  before.posts = {{5, 0, 0.3, 1.8}};
+  after.posts = {{5, 0, 0.3, 1.8}, {4, 3, 0.3, 1.8}};
+  const TwoFrames t(before, after);
+  auto reviewed = [&](const FreeSpaceCheck& check, double x, double y) {
+    MovementDecision d;
+    d.enough_history = d.candidate = true;
+    check.review(t.f1, 1, t.clusterAt(x, y), t.chain, 0.1, d);
+    return d;
+  };
+  const MovementDecision stayed = reviewed(t.check, 5, 0);
+  EXPECT_TRUE(stayed.static_surface);
+  EXPECT_TRUE(stayed.refuted);
+  const MovementDecision arrived = reviewed(t.check, 4, 3);
+  EXPECT_TRUE(arrived.moving());
+  EXPECT_FALSE(arrived.refuted);
+  const MovementDecision unseen = reviewed(FreeSpaceCheck{}, 5, 0);
+  EXPECT_TRUE(unseen.static_surface);
+  EXPECT_FALSE(unseen.refuted);
+  FreeSpaceParams off;
+  off.release_free_ratio = 0;
+  FreeSpaceCheck paper_like(off);
+  paper_like.remember(0, t.f0);
+  EXPECT_FALSE(reviewed(paper_like, 5, 0).refuted);
+  off.release_free_ratio = 1.5;
+  EXPECT_THROW(off.validate(), ParameterError);
+}
+
 TEST(FreeSpaceCheck, SawSurfaceThenTellsWhatThePastFrameSawButNotItsGround) {
   // The post that stayed was seen then where it is now; the one that arrived was not (the old
   // ray went through); a floor point is not a surface when the old frame's pixel was ground.
@@ -374,6 +406,73 @@ TEST(FreeSpaceCheck, ABeamThatPassedOverTheSurfaceBelowItIsNotFreeSpace) {
   FreeSpaceParams bad;
   bad.side_rows = -1;
   EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(FreeSpaceCheck, TheGroundUnderAPointWellAboveItIsNotItsSurface) {
+  // A car's bumper arrived at 5 m on row 1's ray (elevation 3.75 deg: 0.33 m above the sensor).
+  // Before, row 1 saw a wall at 20 m, and row 2 below (-3.75 deg) met the road at 5.2 m, 0.65 m
+  // below the bumper: near its range, but not its surface. Without the ground mask the road
+  // refutes the arrival; with it the ray beside does not count, unless the point lies within
+  // `clearance` of that ground (a kerb).
+  const LidarFrame before = rayFrame([](int r, int c) { return c == 10 && r == 2 ? 5.2F : 20.0F; });
+  const LidarFrame now = rayFrame([](int r, int c) { return c == 10 && r == 1 ? 5.0F : 20.0F; });
+  cv::Mat_<std::uint8_t> road(before.rows(), before.cols(), std::uint8_t{0});
+  road(2, 10) = 1;
+  Cluster bumper;
+  bumper.pixels = {1 * now.cols() + 10};
+  auto evidence = [&](double clearance, const cv::Mat_<std::uint8_t>& ground) {
+    FreeSpaceParams p;
+    p.clearance = clearance;
+    FrameChain chain;
+    chain.push(0, Eigen::Isometry3d::Identity(), true);
+    chain.push(1, Eigen::Isometry3d::Identity(), true);
+    FreeSpaceCheck check(p);
+    check.remember(0, before, ground);
+    return check.evidence(now, 1, bumper, 0, chain);
+  };
+  const FreeSpaceEvidence unmasked = evidence(0.25, {});
+  EXPECT_EQ(unmasked.occupied, 1);
+  EXPECT_EQ(unmasked.free, 0);
+  const FreeSpaceEvidence masked = evidence(0.25, road);
+  EXPECT_EQ(masked.free, 1);
+  EXPECT_EQ(masked.occupied, 0);
+  const FreeSpaceEvidence kerb = evidence(1.0, road);  // 0.65 m counts as on the ground
+  EXPECT_EQ(kerb.occupied, 1);
+  FreeSpaceParams bad;
+  bad.clearance = -0.1;
+  EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(FreeSpaceCheck, ASlowCandidateIsComparedWithAnOlderFrame) {
+  // A walker 20 m away: ranges there agree within 0.3 + 0.02 x 20 = 0.7 m, so in lookback = 10
+  // frames (1 s at 10 Hz) it must move clear_tolerances x 0.7 = 1.4 m: at 1.1 m/s it is compared
+  // with the frame 13 back, at 5 m/s with the usual 10, at 0.2 m/s with max_lookback = 20. The
+  // sensor's own travel since then bounds it (max_travel = 3 m).
+  FreeSpaceParams p;
+  const FreeSpaceCheck check(p);
+  Cluster walker;
+  walker.centroid = {0, 20, 0};
+  auto lookback = [&](double speed, double sensor_step) {
+    FrameChain chain(32);
+    for (long i = 0; i <= 30; i++) {
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      step.translation().x() = i > 0 ? sensor_step : 0;
+      chain.push(i, step, true);
+    }
+    MovementDecision d;
+    d.velocity = {speed, 0, 0};
+    return check.lookbackFor(walker, d, chain, 30, 0.1);
+  };
+  EXPECT_EQ(lookback(1.1, 0), 13);
+  EXPECT_EQ(lookback(5.0, 0), 10);
+  EXPECT_EQ(lookback(0.2, 0), 20);
+  EXPECT_EQ(lookback(0.2, 0.25), 12);  // 12 steps of 0.25 m: 3 m
+  EXPECT_EQ(lookback(0.2, 0.5), 10);   // never shorter than lookback
+  FreeSpaceParams off = p;
+  off.max_lookback = 0;
+  MovementDecision slow;
+  slow.velocity = {0.2, 0, 0};
+  EXPECT_EQ(FreeSpaceCheck(off).lookbackFor(walker, slow, FrameChain(32), 30, 0.1), 10);
 }
 
 TEST(FreeSpaceCheck, AnObjectComingOutFromBehindAnOccluderHasNotLeftAnySpace) {

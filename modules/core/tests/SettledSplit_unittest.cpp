@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splitSettled (docs/algorithm.md §5): a cluster that holds a walker and one who stands is split
 // between their tracks by the standing one's last points.
+#include <dynobj/core/ClusterAssociator.h>
+#include <dynobj/core/Config.h>
 #include <dynobj/core/SettledSplit.h>
 #include <gtest/gtest.h>
 
@@ -63,9 +65,11 @@ struct MergeScene {
     chain.push(1, motion, true);
   }
 
-  void split(std::vector<int>& cluster_to_track, double radius = 0.2) {
+  void split(std::vector<int>& cluster_to_track, double radius = 0.2,
+             double min_share = SettledSplitParams{}.min_share) {
     SettledSplitParams p;
     p.radius = radius;
+    p.min_share = min_share;
     splitSettled(p, frame, 1, chain, tracks, predicted, clusters, cluster_to_track);
   }
 
@@ -142,11 +146,19 @@ TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
     if (p[1] < 0.55f) small.tracks[0].shape.emplace_back(p[0] + 0.5f, p[1], p[2]);
   }
   computeClusterShape(small.frame, small.clusters[0]);
+  MergeScene lenient = small;
   small.split(a);
   EXPECT_EQ(small.clusters.size(), 1u);
   EXPECT_EQ(a, (std::vector<int>{0}));
   fair.split(b);
   EXPECT_EQ(fair.clusters.size(), 2u);
+  // [association] split_min_share = 0.15: a fifth is a part.
+  std::vector<int> c = {0};
+  lenient.split(c, 0.2, 0.15);
+  EXPECT_EQ(lenient.clusters.size(), 2u);
+  AssociationParams bad;
+  bad.split_min_share = 0.6;  // both parts cannot hold more than half
+  EXPECT_THROW(bad.validate(), ParameterError);
 }
 
 TEST(SettledSplit, TheStandingOneAloneIsTakenFromTheMover) {

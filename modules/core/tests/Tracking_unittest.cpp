@@ -260,6 +260,28 @@ TEST(TrackManager, AStoppedTrackIsReleasedAtOnce) {
   EXPECT_TRUE(t.dynamic);
 }
 
+TEST(TrackManager, ATrackWhoseSpaceWasClearlyOccupiedIsReleasedAtOnce) {
+  // A refuted verdict (static_surface) is held by hysteresis; a clear one (refuted: hardly any
+  // of its space was free) releases the track at once, as a stop does.
+  TrackingParams p;
+  p.confirm_frames = 2;
+  p.release_frames = 4;
+  TrackManager tm(p, 5);
+  Track t;
+  MovementDecision yes, occupied, clearly;
+  yes.enough_history = yes.candidate = true;
+  occupied.enough_history = occupied.candidate = occupied.static_surface = true;
+  clearly = occupied;
+  clearly.refuted = true;
+  tm.decide(t, yes);
+  tm.decide(t, yes);
+  ASSERT_TRUE(t.dynamic);
+  tm.decide(t, occupied);
+  EXPECT_TRUE(t.dynamic);
+  tm.decide(t, clearly);
+  EXPECT_FALSE(t.dynamic);
+}
+
 TEST(TrackManager, AnEarlyStaticVerdictIsNoVerdict) {
   TrackingParams p;
   p.settled_frames = 1;

@@ -25,6 +25,9 @@ struct AssociationParams : public StageParams {
   /// between their tracks: its points within this horizontal distance of the resting object's
   /// last points are the resting object's. 0 = the paper: the merged cluster is one observation
   double split_radius = 0.2;
+  /// ... only when each part holds at least this share of the merged cluster's points (a sliver
+  /// is the edge of one object: a car's end over the place of a small thing it hid)
+  double split_min_share = 0.25;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -7,6 +7,7 @@
 // centroid came from viewpoint changes (the visible faces of a pillar turn as the robot walks by).
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -31,7 +32,15 @@ struct FreeSpaceParams : public StageParams {
   /// occupies was free (false: only rigid movers and young tracks must; any other candidate is
   /// kept unless the evidence refutes it). Beyond the paper (docs/algorithm.md 7b).
   bool require_proof = true;
-  int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept)
+  int lookback = 10;  ///< compare with the frame this many frames back (or the oldest kept) ...
+  /// ... and, when that refutes a slow candidate, further back, up to this many frames: until it
+  /// has moved clear_tolerances x the range tolerance at its range (<= lookback or 0 = off).
+  /// Beyond the paper (docs/algorithm.md 7b).
+  int max_lookback = 20;
+  double clear_tolerances = 2.0;
+  double max_travel = 3.0;  ///< [m] ... and only while the sensor moved less than this since then
+  /// Frames kept: the most review() may look back.
+  int history() const { return std::max(lookback, max_lookback); }
   /// [columns] a point is in free space only if the rays this many columns either side of its own
   /// also passed beyond it: an occluding edge (a shelf's end, a pole) shifts by a fraction of a
   /// column between sweeps, and its own ray then grazes past it (0 = its own ray only). Beyond
@@ -52,6 +61,14 @@ struct FreeSpaceParams : public StageParams {
   /// min_free_ratio: a see-through fence beside the path slides with the sensor and shows
   /// 0.4-0.67, a car driving along 0.9 (<= min_free_ratio = off). Beyond the paper (7b).
   double slide_free_ratio = 0.75;
+  /// [m] a point more than this above a ground return beside it (side_rays, side_rows) is not on
+  /// that ground: the ray does not count against it. The row below a car's bumper meets the road
+  /// at about the bumper's range; a kerb, lower than this, stays on it. Beyond the paper (7b).
+  double clearance = 0.25;
+  /// A candidate refuted with a free share below this (and at least min_evidence decisive points)
+  /// was clearly there already: a dynamic track is released at once, as at a stop, not held by
+  /// hysteresis (MovementDecision::refuted; 0 = off). Beyond the paper (7b).
+  double release_free_ratio = 0.05;
 
   /// [m] two ranges near `range` agree within this: margin + range_factor x range.
   double tolerance(double range) const { return margin + range_factor * range; }
@@ -87,18 +104,27 @@ class FreeSpaceCheck {
   /// points moved back by `shift` should lie where the current frame sees through. An object
   /// moving away from the sensor hid, in the old frame, the space it occupies now; the space it
   /// left is free now.
+  /// `ground`: the current frame's ground pixels (clearance, for that second test), if known.
   FreeSpaceEvidence evidence(const LidarFrame& frame, long current, const Cluster& cluster,
                              long past, const FrameChain& chain,
-                             const std::optional<Eigen::Vector3d>& shift = std::nullopt) const;
+                             const std::optional<Eigen::Vector3d>& shift = std::nullopt,
+                             const cv::Mat_<std::uint8_t>& ground = {}) const;
   /// The rule the detector applies to a cluster the movement stage calls moving (`d.moving()`):
-  /// sets `d.static_surface` when the space the cluster occupies was not free at the start of its
-  /// window (frame `current` - lookback, or the oldest the chain keeps). A rigid mover (a long
+  /// sets `d.static_surface` when the space the cluster occupies was not free `lookback` frames
+  /// before (or in the oldest frame the chain keeps), nor, for a slow candidate, lookbackFor()
+  /// frames before. A rigid mover (a long
   /// object exempted from Eq. 23) must prove its motion, since a background strip framed by moving
   /// occluders also "moves" rigidly but no free space was ever seen where it is; other candidates
-  /// must only not contradict it. `dt`: seconds between frames (for the vacated-space fallback).
+  /// must only not contradict it. `dt`: seconds between frames (for the vacated-space fallback);
+  /// `ground`: the current frame's ground pixels.
   void review(const LidarFrame& frame, long current, const Cluster& cluster,
-              const FrameChain& chain, double dt, MovementDecision& d) const;
+              const FrameChain& chain, double dt, MovementDecision& d,
+              const cv::Mat_<std::uint8_t>& ground = {}) const;
   const FreeSpaceParams& params() const { return p_; }
+  /// How many frames back review() compares `cluster` (a candidate moving at d.velocity):
+  /// lookback, or more for a slow one (max_lookback, clear_tolerances).
+  long lookbackFor(const Cluster& cluster, const MovementDecision& d, const FrameChain& chain,
+                   long current, double dt) const;
 
   /// The range image of frame `past` and the transform T_{past<-current} of frame `current`'s
   /// points into it, when both are kept and the sizes agree.
@@ -117,8 +143,10 @@ class FreeSpaceCheck {
   /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless
   /// that went `through` (beyond the point's range plus tolerance); then the nearest of it and
   /// the returning rays up to side_rays columns beside it and side_rows rows above and below it
-  /// (at the point: occupied; nearer: hidden).
-  double rayBeside(const cv::Mat_<float>& seen, int r, int c, double through) const;
+  /// (at the point: occupied; nearer: hidden). A `ground` ray beside it (when given) counts only
+  /// if the point, `height` [m] up in `seen`'s frame, lies within clearance above its return.
+  double rayBeside(const cv::Mat_<float>& seen, int r, int c, double through, double height,
+                   const cv::Mat_<std::uint8_t>* ground) const;
   /// Did the range image `seen` meet a surface at `q` (its own frame), within tolerance_scale x
   /// the tolerance, at a pixel that is not `ground` (when given)?
   bool sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q,

@@ -88,7 +88,10 @@ struct MovementDecision {
   bool slides = false;          ///< rigid, moving along its own axis where the viewpoint moved as a
                                 ///< wall's visible part does (FreeSpaceParams::slide_free_ratio)
   bool static_surface = false;  ///< set by FreeSpaceCheck: its space was occupied already
-  bool porous = false;          ///< set by FreeSpaceCheck: seen through (foliage)
+  /// set by FreeSpaceCheck: static_surface, and hardly any of its space was free (a free share
+  /// below release_free_ratio): like a stop, it releases a dynamic track at once
+  bool refuted = false;
+  bool porous = false;  ///< set by FreeSpaceCheck: seen through (foliage)
   bool moving() const {
     return enough_history && candidate && !drift && !long_object && !static_surface && !porous &&
            !stopped;

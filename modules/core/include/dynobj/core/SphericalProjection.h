@@ -41,6 +41,12 @@ class SphericalProjection {
   /// Eq. (1), v: row of an elevation [rad], or -1 outside the vertical FOV. Sensors with a beam
   /// table (non-uniform spacing) use the nearest beam within half the gap to its neighbours.
   int rowOfElevation(double elevation) const;
+  /// Sine of the elevation at the middle of `row` (between its edges): the height of a return
+  /// in that row is its range times this.
+  double sinElevationOfRow(int row) const {
+    const auto k = static_cast<std::size_t>(row);
+    return 0.5 * (sin_edges_[k] + sin_edges_[k + 1]);
+  }
   /// Both at once; false (row = col = -1) when the point is not in the image. The same pixel as
   /// rowOfElevation(asin(z / |p|)) and columnOf(x, y), without their trigonometry: the row is
   /// found among the sines of the row edges and the column from a polynomial arctangent; a point
