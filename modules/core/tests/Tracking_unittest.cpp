@@ -237,7 +237,7 @@ TEST(MovementAnalyzer, AHeightThatJittersWithTheFeaturesIsNotDrift) {
   EXPECT_TRUE(MovementAnalyzer(p).analyse(still, chain, compact(), 0.1).moving());
 }
 
-TEST(TrackManager, AStoppedTrackIsReleasedAtOnce) {
+TEST(TrackManager, AStoppedOrPlainlyRefutedTrackIsReleasedAtOnce) {
   TrackingParams p;
   p.confirm_frames = 2;
   p.release_frames = 4;
@@ -258,27 +258,14 @@ TEST(TrackManager, AStoppedTrackIsReleasedAtOnce) {
   EXPECT_FALSE(t.dynamic);
   tm.decide(t, yes);
   EXPECT_TRUE(t.dynamic);
-}
-
-TEST(TrackManager, ATrackWhoseSpaceWasClearlyOccupiedIsReleasedAtOnce) {
-  // A refuted verdict (static_surface) is held by hysteresis; a clear one (refuted: hardly any
-  // of its space was free) releases the track at once, as a stop does.
-  TrackingParams p;
-  p.confirm_frames = 2;
-  p.release_frames = 4;
-  TrackManager tm(p, 5);
-  Track t;
-  MovementDecision yes, occupied, clearly;
-  yes.enough_history = yes.candidate = true;
-  occupied.enough_history = occupied.candidate = occupied.static_surface = true;
-  clearly = occupied;
-  clearly.refuted = true;
-  tm.decide(t, yes);
-  tm.decide(t, yes);
-  ASSERT_TRUE(t.dynamic);
+  // A refuted verdict (static_surface) is held by hysteresis; a plain one (refuted: hardly any of
+  // its space was free) releases the track at once, as a stop does.
+  MovementDecision occupied = yes;
+  occupied.static_surface = true;
   tm.decide(t, occupied);
   EXPECT_TRUE(t.dynamic);
-  tm.decide(t, clearly);
+  occupied.refuted = true;
+  tm.decide(t, occupied);
   EXPECT_FALSE(t.dynamic);
 }
 

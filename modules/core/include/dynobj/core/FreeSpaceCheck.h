@@ -112,11 +112,11 @@ class FreeSpaceCheck {
   /// The rule the detector applies to a cluster the movement stage calls moving (`d.moving()`):
   /// sets `d.static_surface` when the space the cluster occupies was not free `lookback` frames
   /// before (or in the oldest frame the chain keeps), nor, for a slow candidate, lookbackFor()
-  /// frames before. A rigid mover (a long
-  /// object exempted from Eq. 23) must prove its motion, since a background strip framed by moving
-  /// occluders also "moves" rigidly but no free space was ever seen where it is; other candidates
-  /// must only not contradict it. `dt`: seconds between frames (for the vacated-space fallback);
-  /// `ground`: the current frame's ground pixels.
+  /// frames before. A rigid mover (a long object exempted from Eq. 23) must prove its motion,
+  /// since a background strip framed by moving occluders also "moves" rigidly but no free space
+  /// was ever seen where it is; other candidates must only not contradict it. A plain refutation
+  /// (release_free_ratio) also sets `d.refuted`. `dt`: seconds between frames (for the
+  /// vacated-space fallback); `ground`: the current frame's ground pixels.
   void review(const LidarFrame& frame, long current, const Cluster& cluster,
               const FrameChain& chain, double dt, MovementDecision& d,
               const cv::Mat_<std::uint8_t>& ground = {}) const;
