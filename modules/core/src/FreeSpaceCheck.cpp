@@ -269,9 +269,13 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
     return must_prove ? !e.provesMotion(p_, d.slides) : !e.supportsMotion(p_, d.slides);
   };
   // A slow candidate refuted by the usual frame may still prove its motion against an older one
-  // (lookbackFor): its own earlier place may lie within the usual frame's tolerance.
-  const long back = lookbackFor(cluster, d, chain, current, dt);
-  d.static_surface = refuted(p_.lookback) && (back == p_.lookback || refuted(back));
+  // (lookbackFor): its own earlier place may lie within the usual frame's tolerance. Only a
+  // refuted candidate asks which frame that is.
+  d.static_surface = refuted(p_.lookback);
+  if (d.static_surface) {
+    const long back = lookbackFor(cluster, d, chain, current, dt);
+    if (back != p_.lookback) d.static_surface = refuted(back);
+  }
   d.refuted = d.static_surface && clearly;
   // Seen through: only asked of a candidate the evidence above left standing.
   d.porous = !d.static_surface && p_.min_solid_ratio > 0 &&
