@@ -11,6 +11,8 @@ void RegionGrowingParams::visit(ParamVisitor& v) {
   v.value("distance", distance);
   v.value("range_factor", range_factor);
   v.value("depth_factor", depth_factor);
+  v.value("slope_factor", slope_factor);
+  v.value("set_back_radius", set_back_radius);
   v.value("max_extent", max_extent);
   v.value("max_pixels", max_pixels);
   v.value("keep_out_settled", keep_out_settled);
@@ -21,8 +23,25 @@ void RegionGrowingParams::validate() const {
   requirePositive("distance", distance);
   requireInRange("range_factor", range_factor, 0, 100);
   requireInRange("depth_factor", depth_factor, 0, 1);
+  requireInRange("slope_factor", slope_factor, 0, 100);
+  requireInRange("set_back_radius", set_back_radius, 0, 100);
   requirePositive("max_extent", max_extent);
   requireInRange("max_pixels", max_pixels, 1, 10000000);
+}
+
+bool RegionGrowingParams::joins(const cv::Vec3f& p, double rp, const cv::Vec3f& q, double rq,
+                                double gap, bool q_above) const {
+  const cv::Vec3f d = q - p;
+  const double d2 = static_cast<double>(d.dot(d)), step = std::abs(rq - rp);
+  const double eps = distance + range_factor * rp * gap;
+  const double depth = distance + depth_factor * rp;
+  if (d2 <= eps * eps && step <= depth) return true;
+  // A top set back from the face below it, where the rows are too far apart for the test above.
+  // Across the rays, |p - q|^2 - (rq - rp)^2 = 2 rp rq (1 - cos angle): the distance with the
+  // step along them taken out.
+  const double set_back = slope_factor * rp * gap;
+  return q_above && rq > rp && set_back > depth && step <= set_back &&
+         d2 - step * step <= eps * eps;
 }
 
 RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) {
@@ -60,6 +79,7 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
     for (int px : seeds[obj])
       seed_radius = std::max(seed_radius, std::hypot(f.pointAt(px)[0] - cx, f.pointAt(px)[1] - cy));
     const double extent = std::max(p_.max_extent, seed_radius + p_.max_extent / 2);
+    const bool wide = seed_radius > p_.set_back_radius;  // wider than a person: a top set back
     queue_.clear();
     for (int px : seeds[obj]) {
       const int r = px / W, c = px % W;
@@ -81,12 +101,8 @@ std::vector<int> RegionGrower::grow(const LidarFrame& f, const cv::Mat_<std::uin
           const int cc = (c + dc + W) % W;
           if (!f.isValid(rr, cc) || owner(rr, cc) != kFree || ground(rr, cc)) continue;
           const cv::Vec3f& q = f.xyz(rr, cc);
-          // Eq. (25), with epsilon widened by the gap between the two pixels' rays at this range.
           const double gap = dr == 0 ? gap_h : (dc == 0 ? gap_v : std::hypot(gap_h, gap_v));
-          const float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
-          const double eps = p_.distance + p_.range_factor * rng * gap;
-          if (static_cast<double>(dx * dx + dy * dy + dz * dz) > eps * eps) continue;
-          if (std::abs(f.range(rr, cc) - rng) > p_.distance + p_.depth_factor * rng) continue;
+          if (!p_.joins(p, rng, q, f.range(rr, cc), gap, wide && dr == -1 && dc == 0)) continue;
           if (std::hypot(q[0] - cx, q[1] - cy) > extent) continue;
           if (admit && !admit(obj, rr * W + cc)) {
             owner(rr, cc) = kKeptOut;

@@ -168,3 +168,61 @@ TEST(RegionGrower, AnAdmissionTestKeepsRefusedPixelsOutOfEveryRegion) {
             static_cast<int>(t.first.size() + t.second.size()));
   EXPECT_TRUE(grower.refused().empty());
 }
+
+TEST(RegionGrower, JoinsATopSetBackOnlyAboveAndWithinTheSlope) {
+  RegionGrowingParams p;      // distance 0.25, range_factor 1.2, depth_factor 0.02, slope_factor 3
+  const double gap = 0.0245;  // 1.4 deg between rows (OS0-64) ...
+  const double r = 12.8, e = -0.05;  // ... a car's boot 12.8 m ahead, its cabin 0.7 m behind
+  auto at = [](double range, double elevation) {
+    return cv::Vec3f(static_cast<float>(range * std::cos(elevation)), 0.f,
+                     static_cast<float>(range * std::sin(elevation)));
+  };
+  const cv::Vec3f boot = at(r, e), cabin = at(r + 0.7, e + gap);
+  // 0.7 m is beyond distance + depth_factor x range (0.506 m), within 3 x 12.8 x 0.0245 (0.94 m).
+  EXPECT_TRUE(p.joins(boot, r, cabin, r + 0.7, gap, true));
+  EXPECT_FALSE(p.joins(boot, r, cabin, r + 0.7, gap, false));  // not the pixel above
+  EXPECT_FALSE(p.joins(cabin, r + 0.7, boot, r, gap, true));   // nearer above: an overhang
+  const cv::Vec3f wall = at(r + 1.0, e + gap);                 // beyond 0.94 m
+  EXPECT_FALSE(p.joins(boot, r, wall, r + 1.0, gap, true));
+  p.slope_factor = 0;
+  EXPECT_FALSE(p.joins(boot, r, cabin, r + 0.7, gap, true));
+  // The usual test is unchanged: 0.4 m deeper is one surface either way.
+  EXPECT_TRUE(p.joins(boot, r, at(r + 0.4, e + gap), r + 0.4, gap, false));
+}
+
+TEST(RegionGrower, TakesACabinSetBackAboveTheBootOfAWideObjectButNotTheWallBehind) {
+  // Rows 1.875 deg apart: at 10 m the usual test allows a 0.45 m step, the slope 0.98 m.
+  Scene scene;
+  scene.room_radius = 20;
+  scene.posts.push_back({10.6, 0, 0.6, 1.0});  // the boot: face at 10 m, top at sensor height
+  scene.posts.push_back({11.4, 0, 0.6, 1.6});  // the cabin above it, its face 0.8 m farther
+  const LidarFrame f = dynobj::test::render(scene, dynobj::test::smallSensor(16, 720));
+  cv::Mat_<std::uint8_t> ground;
+  GroundSegmenter().segment(f, ground);
+  auto on = [&](int r, int c, double px, double height) {
+    const cv::Vec3f& q = f.xyz(r, c);
+    return f.isValid(r, c) && !ground(r, c) && std::abs(std::hypot(q[0] - px, q[1]) - 0.6) < 1e-3 &&
+           q[2] < -1.0 + height + 1e-3;
+  };
+  std::vector<int> seeds;  // the whole boot, about 1 m wide
+  int cabin = 0;
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++) {
+      if (on(r, c, 10.6, 1.0)) seeds.push_back(r * f.cols() + c);
+      cabin += on(r, c, 11.4, 1.6) ? 1 : 0;
+    }
+  const int boot = static_cast<int>(seeds.size());
+  ASSERT_GT(boot, 4);
+  ASSERT_GT(cabin, 4);
+  RegionGrowingParams off, narrow;
+  off.slope_factor = 0;
+  narrow.set_back_radius = 1.0;  // as if the object were no wider than a person
+  cv::Mat_<std::uint8_t> m0, m1, m3;
+  cv::Mat_<int> o0, o1, o3;
+  EXPECT_EQ(RegionGrower(off).grow(f, ground, {seeds}, m0, o0)[0], boot);
+  EXPECT_EQ(RegionGrower(narrow).grow(f, ground, {seeds}, m1, o1)[0], boot);
+  EXPECT_EQ(RegionGrower().grow(f, ground, {seeds}, m3, o3)[0], boot + cabin);
+  for (int r = 0; r < f.rows(); r++)
+    for (int c = 0; c < f.cols(); c++)
+      EXPECT_EQ(m3(r, c) != 0, on(r, c, 10.6, 1.0) || on(r, c, 11.4, 1.6)) << r << "," << c;
+}

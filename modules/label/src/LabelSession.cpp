@@ -45,12 +45,8 @@ void addFeet(const core::LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
       if (!mask(r, c) || mask(r + 1, c) || !f.isValid(r + 1, c) || !ground(r + 1, c) ||
           others(r + 1, c))
         continue;
-      const cv::Vec3f &p = f.xyz(r, c), &q = f.xyz(r + 1, c);
-      const double rng = f.range(r, c);
-      const double eps = gp.distance + gp.range_factor * rng * gap_v;
-      const cv::Vec3f d = q - p;
-      if (static_cast<double>(d.dot(d)) > eps * eps) continue;
-      if (std::abs(f.range(r + 1, c) - rng) > gp.distance + gp.depth_factor * rng) continue;
+      if (!gp.joins(f.xyz(r, c), f.range(r, c), f.xyz(r + 1, c), f.range(r + 1, c), gap_v, false))
+        continue;
       mask(r + 1, c) = 255;  // and on down the column (r + 1 is visited next)
     }
 }

@@ -21,6 +21,15 @@ struct RegionGrowingParams : public StageParams {
       1.2;  ///< epsilon = distance + range_factor x (gap between the rays at that range)
   double depth_factor =
       0.02;  ///< and neighbours' ranges differ by at most distance + depth_factor x range
+  /// ... except that, where rows are too far apart for that, the pixel just above may lie up to
+  /// slope_factor x (the gap between the two rows at that range) farther [-], when the two points
+  /// are no farther apart across the rays than epsilon: an object's top set back from its face (a
+  /// car's cabin behind its boot, seen from behind; its windscreen behind its bonnet) where a
+  /// sparse sensor's rows jump over the surface between them. 0 = off (before Session 24)
+  double slope_factor = 3;
+  /// [m] ... for objects whose seeds lie farther than this from their centre (horizontally):
+  /// wider than a person, whose pixel above the head is whatever stands behind it
+  double set_back_radius = 0.3;
   double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
                             ///< centre, or than half the seeds' own extent plus this, if larger
   int max_pixels = 20000;   ///< safety limit per object
@@ -34,6 +43,12 @@ struct RegionGrowingParams : public StageParams {
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
+
+  /// Eq. (25) as read here: do the points p and q (ranges rp, rq) of two neighbouring pixels
+  /// whose rays are `gap` [rad] apart lie on one object? `q_above`: q's pixel is the one just
+  /// above p's, in the same column.
+  bool joins(const cv::Vec3f& p, double rp, const cv::Vec3f& q, double rq, double gap,
+             bool q_above) const;
 };
 
 class RegionGrower {
