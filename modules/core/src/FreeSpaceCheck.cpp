@@ -103,11 +103,16 @@ void tally(FreeSpaceEvidence& e, double seen, double expected, double tol) {
 bool FreeSpaceCheck::sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q,
                                 double tolerance_scale,
                                 const cv::Mat_<std::uint8_t>* ground) const {
+  return surfaceAt(*proj_, seen, ground, q, tolerance_scale * p_.tolerance(q.norm()));
+}
+
+bool FreeSpaceCheck::surfaceAt(const SphericalProjection& proj, const cv::Mat_<float>& seen,
+                               const cv::Mat_<std::uint8_t>* ground, const Eigen::Vector3d& q,
+                               double tolerance) {
   int r = -1, c = -1;
-  if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
+  if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
   if (ground && (*ground)(r, c)) return false;
-  const double range = q.norm();
-  return std::abs(seen(r, c) - range) <= tolerance_scale * p_.tolerance(range);
+  return std::abs(seen(r, c) - q.norm()) <= tolerance;
 }
 
 double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, double through,
@@ -185,9 +190,9 @@ std::optional<FreeSpaceCheck::PastView> FreeSpaceCheck::pastView(const LidarFram
 }
 
 bool FreeSpaceCheck::sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
-  // Half the ray test's tolerance: the same surface, not one a walker passes 0.3 m in front of;
-  // the ground under a foot is not it.
-  return sawSurface(*view.ranges, view.T * Eigen::Vector3d(p[0], p[1], p[2]), 0.5, view.ground);
+  // The ground under a foot is not it.
+  return sawSurface(*view.ranges, view.T * Eigen::Vector3d(p[0], p[1], p[2]), kSameSurface,
+                    view.ground);
 }
 
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,

@@ -52,6 +52,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("settle_distance", settle_distance);
   v.value("stop_check", stop_check);
   v.value("rest_speed", rest_speed);
+  v.value("later_surface_check", later_surface_check);
 }
 
 void HindsightParams::validate() const {
@@ -64,9 +65,32 @@ void HindsightParams::validate() const {
   requireInRange("rest_speed", rest_speed, 0, 100);
 }
 
-Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing)
-    : p_(p), grower_(growing) {
+Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing,
+                     const FreeSpaceParams& free_space)
+    : p_(p), grower_(growing), free_space_(free_space) {
   p_.validate();
+  free_space_.validate();
+}
+
+RegionGrower::Admit Hindsight::laterSurfaceTest(const std::vector<Held>& held, std::size_t j,
+                                                const TrackedObject& then,
+                                                const Eigen::Vector3d& here,
+                                                const Eigen::Isometry3d& T_jk) {
+  if (!p_.later_surface_check) return {};
+  // It cannot have been there itself: it has travelled farther than its extent since.
+  const std::size_t k = held.size() - 1;
+  if ((here - path_.front().second).head<2>().norm() <= extent(then)) return {};
+  const LidarFrame& newest = *held[k].frame;
+  if (!proj_ || proj_->sensor().rows != newest.rows() || proj_->sensor().cols != newest.cols())
+    proj_.emplace(newest.sensor);
+  const cv::Mat_<std::uint8_t>& ground = held[k].result->ground;
+  return [this, &f = *held[j].frame, &newest, &ground, T_kj = T_jk.inverse()](std::size_t, int px) {
+    const cv::Vec3f& p = f.pointAt(px);
+    const Eigen::Vector3d q = T_kj * Eigen::Vector3d(p[0], p[1], p[2]);
+    return !FreeSpaceCheck::surfaceAt(
+        *proj_, newest.range, ground.size() == newest.range.size() ? &ground : nullptr, q,
+        FreeSpaceCheck::kSameSurface * free_space_.tolerance(q.norm()));
+  };
 }
 
 void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id) {
@@ -170,7 +194,8 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
         break;  // about to start
       const LidarFrame& f = *held[j].frame;
       keepOutSettled(r, f, o.id);
-      const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_)[0];
+      const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_,
+                                     laterSurfaceTest(held, j, *earlier, here, T_jk))[0];
       for (int px : earlier->cluster) r.seeds(px / f.cols(), px % f.cols()) = 255;
       earlier->dynamic = true;
       earlier->points = grown;

@@ -34,18 +34,19 @@ std::vector<int> postPixels(const LidarFrame& f, double x, double y, double radi
 /// A sequence of frames 0.1 s apart seeing one post (sensor frame positions `at`), each with the
 /// result the detector would give: the post tracked as kTrack, its cluster = the post's upper
 /// pixels only (features), its box the post's, dynamic (all its pixels flagged) in the last
-/// `dynamic` frames; `motion`: each frame's T_{prev<-cur}.
+/// `dynamic` frames; `motion`: each frame's T_{prev<-cur}; `standing`: posts in every frame.
 struct Sequence {
   std::vector<LidarFrame> frames;
   std::vector<DetectionResult> results;
   std::vector<std::vector<int>> post;  ///< every post pixel per frame
 
   Sequence(const std::vector<Eigen::Vector2d>& at, const Eigen::Isometry3d& motion,
-           std::size_t dynamic = 3) {
+           std::size_t dynamic = 3, const std::vector<Post>& standing = {}) {
     const SensorModel s = dynobj::test::smallSensor();
     for (std::size_t j = 0; j < at.size(); j++) {
       Scene scene;
       scene.posts.push_back({at[j].x(), at[j].y(), 0.3, 1.8});
+      scene.posts.insert(scene.posts.end(), standing.begin(), standing.end());
       frames.push_back(dynobj::test::render(scene, s, true, 1000000000LL + 100000000LL * j));
       const LidarFrame& f = frames.back();
       DetectionResult r;
@@ -279,6 +280,29 @@ TEST(Hindsight, StopsAtAClusterThatHadMergedWithSomethingElse) {
   seq2.results[2].objects[0].box_max.x() += 1.5;
   Hindsight(lenient).revise(seq2.held());
   EXPECT_EQ(seq2.flagged(0), seq2.post[0]);
+}
+
+TEST(Hindsight, AnEarlierSweepDoesNotTakeWhatTheNewestFrameStillSeesThere) {
+  // A runner at 3 m/s (0.3 m per sweep) starts beside someone standing at (4, -2.4), touching
+  // in frame 0 and apart after that. The newest frame still sees the one standing; the runner has
+  // travelled farther than its extent.
+  std::vector<Eigen::Vector2d> at;
+  for (int j = 0; j < 7; j++) at.emplace_back(4, -0.3 * (6 - j));
+  const Post standing{4, -2.4, 0.3, 1.8};
+  HindsightParams off;
+  off.later_surface_check = false;
+  Sequence before(at, forward(0), 3, {standing}), now(at, forward(0), 3, {standing});
+  Hindsight(off).revise(before.held());
+  Hindsight().revise(now.held());
+  const std::vector<int> other = postPixels(now.frames[0], 4, -2.4, 0.3);
+  ASSERT_FALSE(other.empty());
+  // Without the check the runner's region takes the one standing; with it, only the runner.
+  EXPECT_GT(before.flagged(0).size(), now.post[0].size() + other.size() / 2);
+  EXPECT_EQ(now.flagged(0), now.post[0]);
+  for (std::size_t j = 1; j < 4; j++) {  // nothing else to refuse
+    EXPECT_EQ(now.flagged(j), now.post[j]) << "frame " << j;
+    EXPECT_EQ(now.flagged(j), before.flagged(j)) << "frame " << j;
+  }
 }
 
 TEST(Hindsight, JudgesMotionThroughTheEgoMotion) {

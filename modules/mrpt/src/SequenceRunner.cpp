@@ -16,7 +16,8 @@ SequenceRunner::SequenceRunner(FrameSource& source, SequenceOptions opts)
     : source_(source),
       opts_(std::move(opts)),
       bank_(opts_.detector),
-      hindsight_(opts_.detector.hindsight, opts_.detector.region_growing) {
+      hindsight_(opts_.detector.hindsight, opts_.detector.region_growing,
+                 opts_.detector.free_space) {
   if (!opts_.poses.empty()) poses_ = io::readPoseFile(opts_.poses, io::PoseFormat::Tum);
   if (!opts_.ground_truth.empty()) {
     truth_.emplace(opts_.ground_truth);

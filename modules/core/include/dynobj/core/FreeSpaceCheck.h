@@ -136,8 +136,16 @@ class FreeSpaceCheck {
   std::optional<PastView> pastView(const LidarFrame& frame, long current, long past,
                                    const FrameChain& chain) const;
   /// Did that past frame see a surface other than the ground at the current frame's point `p`
-  /// (within the tolerance)?
+  /// (within kSameSurface x the tolerance)?
   bool sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const;
+  /// The share of the ray test's tolerance within which two views meet the same surface: not one
+  /// a walker passes 0.3 m in front of.
+  static constexpr double kSameSurface = 0.5;
+  /// Did the range image `seen` (projected by `proj`) meet a surface at `q` (its own frame) within
+  /// `tolerance` [m], at a pixel that is not `ground` (when given)?
+  static bool surfaceAt(const SphericalProjection& proj, const cv::Mat_<float>& seen,
+                        const cv::Mat_<std::uint8_t>* ground, const Eigen::Vector3d& q,
+                        double tolerance);
 
  private:
   /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless

@@ -6,7 +6,8 @@
 // `min_dynamic` seconds, its clusters in the held frames before that are flagged too (grown as in
 // Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to
 // where it was `speed_window` later at least `min_speed` fast and its cluster was not much larger
-// than the object (a walker merged with a bench) and it was not standing there (start_check);
+// than the object (a walker merged with a bench) and it was not standing there (start_check),
+// never over what the newest held frame still sees there (later_surface_check);
 // before a frame is written, an object that stood there (stop_check) or whose track then got
 // nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
 // See docs/algorithm.md §9.
@@ -14,12 +15,15 @@
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "dynobj/core/FreeSpaceCheck.h"
 #include "dynobj/core/LidarFrame.h"
 #include "dynobj/core/Params.h"
 #include "dynobj/core/RegionGrower.h"
+#include "dynobj/core/SphericalProjection.h"
 
 namespace dynobj::core {
 
@@ -46,6 +50,11 @@ struct HindsightParams : public StageParams {
   /// than this (its centroid's jitter, 0.01-0.05 m per sweep, beats a quarter of a speed that
   /// the track's filter has already let fall after the stop); 0 = only the quarter rule
   double rest_speed = 0.3;
+  /// an earlier sweep's region does not take a point that the newest held frame still sees on a
+  /// surface (not ground; as [region_growing] past_surface_check, the other way in time), when the
+  /// object has since travelled farther than its own extent: someone standing beside a walker
+  /// when the recording starts (false = as before Session 24)
+  bool later_surface_check = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -62,7 +71,9 @@ class Hindsight {
     DetectionResult* result = nullptr;
   };
 
-  explicit Hindsight(const HindsightParams& p = {}, const RegionGrowingParams& growing = {});
+  /// `free_space`: its tolerance, for later_surface_check.
+  explicit Hindsight(const HindsightParams& p = {}, const RegionGrowingParams& growing = {},
+                     const FreeSpaceParams& free_space = {});
 
   /// `held`: one sensor's held frames, oldest first, the last one just detected. Flags in the
   /// earlier frames the clusters of the tracks whose dynamic run reaches min_dynamic in the last
@@ -86,7 +97,14 @@ class Hindsight {
  private:
   HindsightParams p_;
   RegionGrower grower_;
+  FreeSpaceParams free_space_;
+  std::optional<SphericalProjection> proj_;  ///< Eq. (1) for the newest held frame's sensor
   cv::Mat_<int> owner_;
+  /// later_surface_check for the growth of `then` at held frame j (T_jk as in movingAt; `here`
+  /// its centroid then, in the newest frame's coordinates): empty when it does not apply.
+  RegionGrower::Admit laterSurfaceTest(const std::vector<Held>& held, std::size_t j,
+                                       const TrackedObject& then, const Eigen::Vector3d& here,
+                                       const Eigen::Isometry3d& T_jk);
   /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) and the
   /// pixels its region growing refused (`seen_static`) kept out.
   void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);
