@@ -189,10 +189,10 @@ std::optional<FreeSpaceCheck::PastView> FreeSpaceCheck::pastView(const LidarFram
   return std::nullopt;
 }
 
-bool FreeSpaceCheck::sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
-  // The ground under a foot is not it.
-  return sawSurface(*view.ranges, view.T * Eigen::Vector3d(p[0], p[1], p[2]), kSameSurface,
-                    view.ground);
+bool FreeSpaceCheck::sawSurfaceIn(const SphericalProjection& proj, const FreeSpaceParams& params,
+                                  const PastView& view, const cv::Vec3f& p) {
+  const Eigen::Vector3d q = view.T * Eigen::Vector3d(p[0], p[1], p[2]);
+  return surfaceAt(proj, *view.ranges, view.ground, q, 0.5 * params.tolerance(q.norm()));
 }
 
 FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current,

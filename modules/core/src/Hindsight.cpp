@@ -84,12 +84,10 @@ RegionGrower::Admit Hindsight::laterSurfaceTest(const std::vector<Held>& held, s
   if (!proj_ || proj_->sensor().rows != newest.rows() || proj_->sensor().cols != newest.cols())
     proj_.emplace(newest.sensor);
   const cv::Mat_<std::uint8_t>& ground = held[k].result->ground;
-  return [this, &f = *held[j].frame, &newest, &ground, T_kj = T_jk.inverse()](std::size_t, int px) {
-    const cv::Vec3f& p = f.pointAt(px);
-    const Eigen::Vector3d q = T_kj * Eigen::Vector3d(p[0], p[1], p[2]);
-    return !FreeSpaceCheck::surfaceAt(
-        *proj_, newest.range, ground.size() == newest.range.size() ? &ground : nullptr, q,
-        FreeSpaceCheck::kSameSurface * free_space_.tolerance(q.norm()));
+  const FreeSpaceCheck::PastView later{
+      &newest.range, ground.size() == newest.range.size() ? &ground : nullptr, T_jk.inverse()};
+  return [this, &f = *held[j].frame, later](std::size_t, int px) {
+    return !FreeSpaceCheck::sawSurfaceIn(*proj_, free_space_, later, f.pointAt(px));
   };
 }
 

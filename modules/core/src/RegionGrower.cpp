@@ -36,12 +36,12 @@ bool RegionGrowingParams::joins(const cv::Vec3f& p, double rp, const cv::Vec3f& 
   const double eps = distance + range_factor * rp * gap;
   const double depth = distance + depth_factor * rp;
   if (d2 <= eps * eps && step <= depth) return true;
+  if (!q_above || rq <= rp) return false;
   // A top set back from the face below it, where the rows are too far apart for the test above.
   // Across the rays, |p - q|^2 - (rq - rp)^2 = 2 rp rq (1 - cos angle): the distance with the
   // step along them taken out.
   const double set_back = slope_factor * rp * gap;
-  return q_above && rq > rp && set_back > depth && step <= set_back &&
-         d2 - step * step <= eps * eps;
+  return set_back > depth && step <= set_back && d2 - step * step <= eps * eps;
 }
 
 RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) {

@@ -135,17 +135,16 @@ class FreeSpaceCheck {
   };
   std::optional<PastView> pastView(const LidarFrame& frame, long current, long past,
                                    const FrameChain& chain) const;
-  /// Did that past frame see a surface other than the ground at the current frame's point `p`
-  /// (within kSameSurface x the tolerance)?
-  bool sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const;
-  /// The share of the ray test's tolerance within which two views meet the same surface: not one
-  /// a walker passes 0.3 m in front of.
-  static constexpr double kSameSurface = 0.5;
-  /// Did the range image `seen` (projected by `proj`) meet a surface at `q` (its own frame) within
-  /// `tolerance` [m], at a pixel that is not `ground` (when given)?
-  static bool surfaceAt(const SphericalProjection& proj, const cv::Mat_<float>& seen,
-                        const cv::Mat_<std::uint8_t>* ground, const Eigen::Vector3d& q,
-                        double tolerance);
+  /// Did that past frame see a surface other than the ground at the current frame's point `p`?
+  bool sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
+    return sawSurfaceIn(*proj_, p_, view, p);
+  }
+  /// The same for any view (hindsight asks a later frame): did `view`'s range image, projected by
+  /// `proj`, see a surface at the point `p` (carried in by view.T) within half of `params`'
+  /// tolerance — the same surface, not one a walker passes 0.3 m in front of — at a pixel that
+  /// is not the view's ground (the ground under a foot is not it)?
+  static bool sawSurfaceIn(const SphericalProjection& proj, const FreeSpaceParams& params,
+                           const PastView& view, const cv::Vec3f& p);
 
  private:
   /// The range the ray test of a point in pixel (r, c) reads from `seen`: its own ray's, unless
@@ -160,6 +159,10 @@ class FreeSpaceCheck {
   bool sawSurface(const cv::Mat_<float>& seen, const Eigen::Vector3d& q,
                   double tolerance_scale = 1.0,
                   const cv::Mat_<std::uint8_t>* ground = nullptr) const;
+  /// The same with a given projection and tolerance [m].
+  static bool surfaceAt(const SphericalProjection& proj, const cv::Mat_<float>& seen,
+                        const cv::Mat_<std::uint8_t>* ground, const Eigen::Vector3d& q,
+                        double tolerance);
 
   FreeSpaceParams p_;
   std::size_t history_;
