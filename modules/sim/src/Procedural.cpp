@@ -2,6 +2,7 @@
 #include "dynobj/sim/Procedural.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -184,21 +185,72 @@ void WorldBuilder::walker(const Eigen::Vector4d& region, double speed_lo, double
 void WorldBuilder::stander(const Eigen::Vector2d& at) {
   actors_ << "  - {class: pedestrian, height: [1.55, 1.9], trajectory: {type: stationary, at: "
           << point(at) << ", yaw_deg: " << num(uni(-180, 180)) << "}}\n";
-  occupied_.push_back({at, 0.5});
+  occupied_.push_back({at, kStanderRadius});
+  standers_.push_back(at);
 }
 
-bool WorldBuilder::mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts,
-                         double speed, bool loop, double start, double pause) {
-  if (cls != "pedestrian" && platform_radius_ > 0) {  // vehicles keep clear of the sensor
-    const double hl = cls == "car" ? 2.2 : 0.85, hw = cls == "car" ? 0.9 : 0.3;  // half footprint
-    const PoseTrack track = PoseTrack::waypoints(pts, speed, pause, loop, start, duration_);
-    for (double t = 0; t <= duration_; t += 0.05) {
-      const Pose2 a = track.at(t), p = platform_track_.at(t);
+namespace {
+/// A vehicle's footprint (half length hl along its yaw, half width hw) as three discs of radius
+/// hw along its axis.
+std::array<Eigen::Vector2d, 3> footprint(const Pose2& p, double hl, double hw) {
+  const Eigen::Vector2d axis(std::cos(p.yaw), std::sin(p.yaw)), c(p.x, p.y);
+  const double off = std::max(hl - hw, 0.0);
+  return {c - off * axis, c, c + off * axis};
+}
+}  // namespace
+
+bool WorldBuilder::clearOfOthers(const PoseTrack& track, double hl, double hw, double start) const {
+  constexpr double kGap = 0.1;  // [m] between two vehicles' footprints, or one and a person
+  for (double t = 0; t <= duration_; t += 0.05) {
+    const Pose2 a = track.at(t);
+    if (platform_radius_ > 0) {  // the platform: its radius from the footprint rectangle
+      const Pose2 p = platform_track_.at(t);
       const double dx = p.x - a.x, dy = p.y - a.y, c = std::cos(a.yaw), s = std::sin(a.yaw);
       const double lx = std::max(std::abs(c * dx + s * dy) - hl, 0.0);
       const double ly = std::max(std::abs(-s * dx + c * dy) - hw, 0.0);
       if (std::hypot(lx, ly) < platform_radius_) return false;
     }
+    const auto mine = footprint(a, hl, hw);
+    for (const Eigen::Vector2d& at : standers_)
+      for (const Eigen::Vector2d& d : mine)
+        if ((d - at).norm() < hw + kStanderRadius + kGap) return false;
+    for (const Vehicle& v : vehicles_) {
+      if (t < start && t < v.start) continue;  // both still waiting to set off (off-stage)
+      const auto theirs = footprint(v.track.at(t), v.hl, v.hw);
+      for (const Eigen::Vector2d& d : mine)
+        for (const Eigen::Vector2d& e : theirs)
+          if ((d - e).norm() < hw + v.hw + kGap) return false;
+    }
+  }
+  return true;
+}
+
+std::vector<Eigen::Vector2d> WorldBuilder::loopFrom(const std::vector<Eigen::Vector2d>& pts,
+                                                    double phase) {
+  double total = 0;
+  for (std::size_t i = 0; i < pts.size(); i++) total += (pts[(i + 1) % pts.size()] - pts[i]).norm();
+  double at = phase * total;
+  for (std::size_t i = 0; i < pts.size(); i++) {
+    const Eigen::Vector2d a = pts[i], b = pts[(i + 1) % pts.size()];
+    const double l = (b - a).norm();
+    if (at <= l || i + 1 == pts.size()) {
+      std::vector<Eigen::Vector2d> out{a + (b - a) * (l > 0 ? std::min(at / l, 1.0) : 0.0)};
+      for (std::size_t j = 1; j <= pts.size(); j++) out.push_back(pts[(i + j) % pts.size()]);
+      return out;
+    }
+    at -= l;
+  }
+  return pts;
+}
+
+bool WorldBuilder::mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts,
+                         double speed, bool loop, double start, double pause) {
+  if (cls != "pedestrian") {  // vehicles keep clear of the sensor, each other and standers
+    const double hl = cls == "car" ? 2.2 : 0.85, hw = cls == "car" ? 0.9 : 0.3;  // half footprint
+    PoseTrack track = PoseTrack::waypoints(pts, speed, pause, loop, start, duration_);
+    if (!clearOfOthers(track, hl, hw, start)) return false;
+    vehicles_.push_back({std::move(track), hl, hw, start});
+    keepOut(pts, hw + kStanderRadius, loop);  // no one placed later stands in its way
   }
   actors_ << "  - {class: " << cls << ", trajectory: {type: waypoints, speed: " << num(speed)
           << ", pause: " << num(pause) << ", loop: " << (loop ? "true" : "false")

@@ -182,7 +182,8 @@ void buildWarehouse(WorldBuilder& w) {
       w.stander({w.uni(x0, x1), ay});
     }
   }
-  // Forklift-sized vehicles along the aisles (never into the platform: see mover()).
+  // Forklift-sized vehicles along the aisles (never into the platform, each other or someone
+  // standing: see mover()).
   for (int k = w.count(w.spec().cars, 1, 2); k > 0; k--)
     for (int tries = 0; tries < 10; tries++) {
       const int pick = w.uniInt(0, static_cast<int>(aisles.size()) - 1);

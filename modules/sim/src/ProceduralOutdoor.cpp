@@ -111,23 +111,28 @@ void buildStreet(WorldBuilder& w) {
     }
   }
   // Traffic: cars both ways (and across at a crossroad), cyclists, pedestrians on the sidewalks.
-  // A vehicle that would drive into the platform is drawn again (mover()).
+  // A vehicle that would drive into the platform, another vehicle or someone standing is drawn
+  // again (mover()).
   const int cars = w.count(w.spec().cars, 3, 8);
   for (int k = 0; k < cars; k++)
-    for (int tries = 0; tries < 10; tries++) {
+    for (int tries = 0; tries < 30; tries++) {
+      // Keeping right both ways: down one lane, back up the other (turning beyond the ends).
       const double dir = w.chance(0.5) ? 1 : -1, y = dir > 0 ? -road / 4 : road / 4;
-      std::vector<V2> pts{{-dir * (len / 2 + 20), y}, {dir * (len / 2 + 20), y}};
-      if (crossing && k % 3 == 2) pts = {{y, -dir * (len / 2)}, {y, dir * (len / 2)}};
-      const double speed = w.uni(5, 12);
-      if (w.mover("car", pts, speed, true, w.uni(0, 0.5 * w.duration()))) break;
+      const double end = len / 2 + 20;
+      std::vector<V2> pts{{-dir * end, y}, {dir * end, y}, {dir * end, -y}, {-dir * end, -y}};
+      if (crossing && k % 3 == 2)
+        pts = {{-y, -dir * len / 2}, {-y, dir * len / 2}, {y, dir * len / 2}, {y, -dir * len / 2}};
+      const double speed = w.uni(5, 12), phase = w.uni(0, 1);
+      if (w.mover("car", WorldBuilder::loopFrom(pts, phase), speed, true, 0)) break;
     }
   for (int k = w.count(w.spec().cyclists, 1, 4); k > 0; k--)
-    for (int tries = 0; tries < 10; tries++) {
+    for (int tries = 0; tries < 30; tries++) {  // near the kerb, keeping right
       const double dir = w.chance(0.5) ? 1 : -1;
-      const double y = dir > 0 ? -(road / 2 - 2.4) : road / 2 - 2.4, speed = w.uni(3, 6);
-      if (w.mover("cyclist", {{-dir * (len / 2 + 10), y}, {dir * (len / 2 + 10), y}}, speed, true,
-                  w.uni(0, 0.5 * w.duration())))
-        break;
+      const double y = dir > 0 ? -(road / 2 - 0.7) : road / 2 - 0.7, speed = w.uni(3, 6);
+      const double end = len / 2 + 10;
+      const std::vector<V2> loop{
+          {-dir * end, y}, {dir * end, y}, {dir * end, -y}, {-dir * end, -y}};
+      if (w.mover("cyclist", WorldBuilder::loopFrom(loop, w.uni(0, 1)), speed, true, 0)) break;
     }
   const int people = w.count(w.spec().pedestrians, 8, 20);
   for (int k = 0; k < people; k++) {
@@ -245,7 +250,7 @@ void buildPlaza(WorldBuilder& w) {
     else
       w.walker(region, 0.6, 1.6, 4.0, w.chance(0.15) ? w.uni(3, 0.5 * w.duration()) : 0.0);
   for (int k = w.count(w.spec().cyclists, 0, 3); k > 0; k--)
-    for (int tries = 0; tries < 10; tries++) {  // not through the platform (mover())
+    for (int tries = 0; tries < 10; tries++) {  // not through the platform or others (mover())
       const double y0 = w.uni(-ay, ay), y1 = w.uni(-ay, ay), dir = w.chance(0.5) ? 1 : -1;
       const double speed = w.uni(3, 5.5);
       if (w.mover("cyclist", {{-dir * (sx / 2 + 8), y0}, {dir * (sx / 2 + 8), y1}}, speed, true,

@@ -47,15 +47,18 @@ void buildParking(WorldBuilder& w) {
   }
   const double top = y + kSlotD;  // the lot's upper edge
   const double x0 = -sx / 2 + kEnd, x1 = sx / 2 - kEnd, xe = sx / 2 - kEnd / 2;
-  constexpr double kKeep = 1.6;  // the platform keeps to one side of a lane, the others opposite
+  constexpr double kKeep = 1.6;  // [m] vehicles keep this far right of a lane's centre line
   // Platform: around the lanes (or standing at the end of one).
   const std::string& route = w.spec().route;
   std::vector<V2> pts;
   if (route == "auto" || route == "loop") {
-    pts = {{-xe, lanes.front() - kKeep}, {xe, lanes.front() - kKeep}};
-    if (lanes.size() > 1)
-      pts.insert(pts.end(), {{xe, lanes.back() - kKeep}, {-xe, lanes.back() - kKeep}});
-    if (w.chance(0.5)) std::reverse(pts.begin(), pts.end());
+    // Out along the first lane and back along the last (or the same one), keeping right.
+    const double k = w.chance(0.5) ? kKeep : -kKeep;  // which way round
+    pts = {{-xe, lanes.front() - k},
+           {xe, lanes.front() - k},
+           {xe, lanes.back() + k},
+           {-xe, lanes.back() + k}};
+    if (k < 0) std::reverse(pts.begin(), pts.end());
     w.platform(pts, w.platformSpeed(3.0), true, 2.0);  // a car: 2 m kept clear of others
     w.keepOut(pts, 1.5, true);
   } else if (route == "stationary") {
@@ -89,10 +92,11 @@ void buildParking(WorldBuilder& w) {
       continue;
     }
     const double exit = (w.chance(0.5) ? 1 : -1) * (sx / 2 + 15);
-    const double yl = s.lane_y + kKeep, speed = w.uni(2, 4), start = w.uni(1, 0.75 * w.duration());
+    const double yl = s.lane_y + (exit > 0 ? -kKeep : kKeep);  // keeping right
+    const double speed = w.uni(2, 4), start = w.uni(1, 0.75 * w.duration());
     if (w.mover("car", {s.at, {s.at.x(), yl}, {exit, yl}}, speed, false, start))
       w.keepOutDisc(s.at, 2.3);
-    else  // it would drive into the platform: it stays
+    else  // it would drive into the platform, another vehicle or someone standing: it stays
       w.parkedCar(s.at.x(), s.at.y(), yaw);
   }
   // Islands at the row ends: trees, bushes, lamp posts.
@@ -144,15 +148,15 @@ void buildParking(WorldBuilder& w) {
         w.material(0.35, 0.6, {"posters", "checker", "noise"}, 1.5, 2.5));
   // Cars cruising the lanes, people walking between the cars.
   for (int k = w.count(w.spec().cars, 1, 3); k > 0; k--)
-    for (int tries = 0; tries < 10; tries++) {  // not into the platform (mover())
+    for (int tries = 0; tries < 10; tries++) {  // not into the platform or others (mover())
       const double la =
           lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
       const double lb =
           lanes[static_cast<std::size_t>(w.uniInt(0, static_cast<int>(lanes.size()) - 1))];
       const double xc = xe - kKeep, speed = w.uni(2.5, 4.5);
-      if (w.mover("car", {{xc, la + kKeep}, {-xc, la + kKeep}, {-xc, lb + kKeep}, {xc, lb + kKeep}},
-                  speed, true, w.uni(0, 0.5 * w.duration())))
-        break;
+      const std::vector<V2> loop{
+          {xc, la + kKeep}, {-xc, la + kKeep}, {-xc, lb - kKeep}, {xc, lb - kKeep}};
+      if (w.mover("car", WorldBuilder::loopFrom(loop, w.uni(0, 1)), speed, true, 0)) break;
     }
   const int people = w.count(w.spec().pedestrians, 4, 12);
   for (int k = 0; k < people; k++) {

@@ -57,9 +57,15 @@ class WorldBuilder {
               double start = 0);
   void stander(const Eigen::Vector2d& at);
   /// A pedestrian, cyclist or car on waypoints. A vehicle whose footprint would come within the
-  /// platform's radius of the sensor at any time is not added (false): draw another.
+  /// platform's radius of the sensor, or near another vehicle's footprint or a stander, at any
+  /// time is not added (false): draw another. An added vehicle's path is kept out for what is
+  /// placed later.
   bool mover(const std::string& cls, const std::vector<Eigen::Vector2d>& pts, double speed,
              bool loop, double start, double pause = 0);
+  /// The closed loop `pts` entered at `phase` (0-1) of its length: a vehicle already on its way
+  /// at the start, not one waiting at the first point until it sets off.
+  static std::vector<Eigen::Vector2d> loopFrom(const std::vector<Eigen::Vector2d>& pts,
+                                               double phase);
   /// The sensor platform (call before any mover). `radius` [m]: its body, kept clear of vehicles.
   void platform(const std::vector<Eigen::Vector2d>& pts, double speed, bool loop,
                 double radius = 0.8);
@@ -76,6 +82,15 @@ class WorldBuilder {
     Eigen::Vector2d a, b;
     double half_width;
   };
+  struct Vehicle {
+    PoseTrack track;
+    double hl, hw;  ///< [m] half length and half width of its footprint
+    double start;   ///< [s] when it sets off
+  };
+  static constexpr double kStanderRadius = 0.5;  ///< [m] the disc a stander occupies
+  /// No collision over the sequence with the platform, the vehicles added or a stander (two
+  /// vehicles both still waiting at their first points, before `start`, do not count).
+  bool clearOfOthers(const PoseTrack& track, double hl, double hw, double start) const;
   static std::string num(double v);
   static std::string point(const Eigen::Vector2d& p);
 
@@ -86,6 +101,8 @@ class WorldBuilder {
   std::vector<Corridor> corridors_;
   PoseTrack platform_track_;
   double platform_radius_ = 0;
+  std::vector<Vehicle> vehicles_;
+  std::vector<Eigen::Vector2d> standers_;
   std::ostringstream floor_, static_, actors_, platform_;
 };
 

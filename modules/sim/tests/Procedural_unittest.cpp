@@ -156,3 +156,62 @@ TEST(Procedural, VehiclesNeverDriveIntoThePlatform) {
       }
     }
 }
+
+namespace {
+
+/// Do two vehicle footprints (rectangles of half size hl x hw at the poses) overlap? Separating
+/// axis test over the four edge normals.
+bool overlap(const Pose2& a, double ahl, double ahw, const Pose2& b, double bhl, double bhw) {
+  const Eigen::Vector2d d(b.x - a.x, b.y - a.y);
+  const Eigen::Vector2d ax[2] = {{std::cos(a.yaw), std::sin(a.yaw)},
+                                 {-std::sin(a.yaw), std::cos(a.yaw)}};
+  const Eigen::Vector2d bx[2] = {{std::cos(b.yaw), std::sin(b.yaw)},
+                                 {-std::sin(b.yaw), std::cos(b.yaw)}};
+  for (const Eigen::Vector2d& n : {ax[0], ax[1], bx[0], bx[1]}) {
+    const double ra = ahl * std::abs(ax[0].dot(n)) + ahw * std::abs(ax[1].dot(n));
+    const double rb = bhl * std::abs(bx[0].dot(n)) + bhw * std::abs(bx[1].dot(n));
+    if (std::abs(d.dot(n)) > ra + rb) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(Procedural, VehiclesNeverDriveThroughEachOtherOrSomeoneStanding) {
+  // Cars and cyclists keep right and are drawn again when they would meet another vehicle or a
+  // standing person: their bodies (the footprint less 0.2 m all round) never overlap, and no one
+  // standing is inside a footprint.
+  const auto half = [](const Actor& a) {
+    return a.cls == ActorClass::Car ? Eigen::Vector2d(2.2, 0.9) : Eigen::Vector2d(0.85, 0.3);
+  };
+  for (const char* kind : kKinds)
+    for (std::uint32_t seed : {1u, 2u, 3u, 4u, 5u}) {
+      SCOPED_TRACE(std::string(kind) + " seed " + std::to_string(seed));
+      const Scenario s =
+          load(spec(kind, kind == std::string("street") ? ", crossing: true" : ""), seed);
+      std::vector<const Actor*> vehicles, standing;
+      for (const Actor& a : s.actors)
+        if (a.cls != ActorClass::Pedestrian)
+          vehicles.push_back(&a);
+        else if (a.track.keys().size() == 1)
+          standing.push_back(&a);
+      for (double t = 0; t < s.duration(); t += 0.05)
+        for (std::size_t i = 0; i < vehicles.size(); i++) {
+          const Actor& a = *vehicles[i];
+          const Pose2 p = a.track.at(t);
+          const Eigen::Vector2d h = half(a);
+          for (std::size_t j = i + 1; j < vehicles.size(); j++) {
+            const Actor& b = *vehicles[j];
+            const Eigen::Vector2d g = half(b);
+            ASSERT_FALSE(
+                overlap(p, h.x() - 0.2, h.y() - 0.2, b.track.at(t), g.x() - 0.2, g.y() - 0.2))
+                << "actors " << a.id << " and " << b.id << " at t = " << t;
+          }
+          for (const Actor* st : standing) {
+            const Pose2 q = st->track.at(0);
+            ASSERT_FALSE(overlap(p, h.x(), h.y(), q, 0.01, 0.01))
+                << "actor " << a.id << " through stander " << st->id << " at t = " << t;
+          }
+        }
+    }
+}
