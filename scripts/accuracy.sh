@@ -112,6 +112,7 @@ ABLATIONS=(
   "no older frame for a slow candidate (\`[free_space] max_lookback = 0\`) — before Session 23|[free_space]\nmax_lookback = 0\n"
   "no set-back top for wide objects (\`[region_growing] slope_factor = 0\`) — before Session 24|[region_growing]\nslope_factor = 0\n"
   "earlier sweeps grown over what the newest held frame still sees (\`[hindsight] later_surface_check = false\`) — before Session 24|[hindsight]\nlater_surface_check = false\n"
+  "a rigid mover's own past body counted as occupied (\`[free_space] exclude_own_past = false\`) — before Session 25|[free_space]\nexclude_own_past = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dynobj/core/Config.h"
 
@@ -25,6 +26,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("slide_free_ratio", slide_free_ratio);
   v.value("clearance", clearance);
   v.value("release_free_ratio", release_free_ratio);
+  v.value("exclude_own_past", exclude_own_past);
 }
 
 void FreeSpaceParams::validate() const {
@@ -199,7 +201,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
                                            const Cluster& cluster, long past,
                                            const FrameChain& chain,
                                            const std::optional<Eigen::Vector3d>& shift,
-                                           const cv::Mat_<std::uint8_t>& ground) const {
+                                           const cv::Mat_<std::uint8_t>& ground,
+                                           bool own_past) const {
   FreeSpaceEvidence e;
   const std::optional<PastView> view = pastView(frame, current, past, chain);
   if (!view) return e;
@@ -207,10 +210,28 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const Eigen::Isometry3d& T = view->T;  // current -> past frame
   // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
   // a free vote counts only where `free_if` holds for the placed point (else unknown).
-  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen,
-                      const cv::Mat_<std::uint8_t>* seen_ground, const auto& free_if) {
+  // Where its own body was then: less than its travel behind its front, along its motion.
+  const double travel = shift && own_past ? shift->head<2>().norm() : 0.0;
+  const Eigen::Vector2d along =
+      travel > 0 ? Eigen::Vector2d(shift->head<2>() / travel) : Eigen::Vector2d::Zero();
+  double front = -std::numeric_limits<double>::infinity();
+  if (travel > 0)
     for (int px : cluster.pixels) {
       const cv::Vec3f& p = frame.pointAt(px);
+      front = std::max(front, along.x() * p[0] + along.y() * p[1]);
+    }
+  const auto ownPast = [&](const cv::Vec3f& p) {
+    return travel > 0 && along.x() * p[0] + along.y() * p[1] + travel <= front + p_.margin;
+  };
+  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen,
+                      const cv::Mat_<std::uint8_t>* seen_ground, const auto& free_if,
+                      bool skip_own_past) {
+    for (int px : cluster.pixels) {
+      const cv::Vec3f& p = frame.pointAt(px);
+      if (skip_own_past && ownPast(p)) {
+        e.unknown++;
+        continue;
+      }
       const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
       int r = -1, c = -1;
       if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) {
@@ -227,7 +248,7 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
     }
   };
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old, view->ground,
-           [](const Eigen::Vector3d&) { return true; });
+           [](const Eigen::Vector3d&) { return true; }, true);
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
   // No verdict (hidden then): the space it left, moved back by `shift`. Still occupied now
   // refutes the motion. Seen through now proves it only where the old frame saw a surface there
@@ -236,7 +257,7 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const bool ground_now = ground.size() == frame.range.size();
   testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range,
            ground_now ? &ground : nullptr,
-           [&](const Eigen::Vector3d& left) { return sawSurface(*old, T * left); });
+           [&](const Eigen::Vector3d& left) { return sawSurface(*old, T * left); }, false);
   return e;
 }
 
@@ -268,7 +289,8 @@ void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster
   auto refuted = [&](long back) {
     const long past = std::max(chain.oldest(), current - back);
     const Eigen::Vector3d shift = d.velocity * dt * static_cast<double>(current - past);
-    const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift, ground);
+    const FreeSpaceEvidence e = evidence(frame, current, cluster, past, chain, shift, ground,
+                                         p_.exclude_own_past && d.rigid);
     const int decisive = e.free + e.occupied;
     clearly = clearly && decisive >= p_.min_evidence && e.free < p_.release_free_ratio * decisive;
     return must_prove ? !e.provesMotion(p_, d.slides) : !e.supportsMotion(p_, d.slides);

@@ -69,6 +69,11 @@ struct FreeSpaceParams : public StageParams {
   /// was clearly there already: a dynamic track is released at once, as at a stop, not held by
   /// hysteresis (MovementDecision::refuted; 0 = off). Beyond the paper (7b).
   double release_free_ratio = 0.05;
+  /// For a rigid mover (MovementDecision::rigid), a point its own body covered in the past frame
+  /// is no evidence either way: one less than its travel (+ margin) behind its front, along its
+  /// motion. A car driving along at 3 m/s covers in a second only 3 m of its 4.4: its rear was
+  /// itself then, and counted as a surface already there. Beyond the paper (docs/algorithm.md 7b).
+  bool exclude_own_past = true;
 
   /// [m] two ranges near `range` agree within this: margin + range_factor x range.
   double tolerance(double range) const { return margin + range_factor * range; }
@@ -105,16 +110,20 @@ class FreeSpaceCheck {
   /// moving away from the sensor hid, in the old frame, the space it occupies now; the space it
   /// left is free now.
   /// `ground`: the current frame's ground pixels (clearance, for that second test), if known.
+  /// `own_past` (with `shift`): the points the object's own body covered in frame `past` — less
+  /// than |shift| (+ margin) behind its front along `shift` — are unknown, not occupied.
   FreeSpaceEvidence evidence(const LidarFrame& frame, long current, const Cluster& cluster,
                              long past, const FrameChain& chain,
                              const std::optional<Eigen::Vector3d>& shift = std::nullopt,
-                             const cv::Mat_<std::uint8_t>& ground = {}) const;
+                             const cv::Mat_<std::uint8_t>& ground = {},
+                             bool own_past = false) const;
   /// The rule the detector applies to a cluster the movement stage calls moving (`d.moving()`):
   /// sets `d.static_surface` when the space the cluster occupies was not free `lookback` frames
   /// before (or in the oldest frame the chain keeps), nor, for a slow candidate, lookbackFor()
   /// frames before. A rigid mover (a long object exempted from Eq. 23) must prove its motion,
   /// since a background strip framed by moving occluders also "moves" rigidly but no free space
-  /// was ever seen where it is; other candidates must only not contradict it. A plain refutation
+  /// was ever seen where it is; other candidates must only not contradict it. A rigid mover's own
+  /// past body is left out of the evidence (exclude_own_past). A plain refutation
   /// (release_free_ratio) also sets `d.refuted`. `dt`: seconds between frames (for the
   /// vacated-space fallback); `ground`: the current frame's ground pixels.
   void review(const LidarFrame& frame, long current, const Cluster& cluster,
