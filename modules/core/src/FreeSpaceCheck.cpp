@@ -208,9 +208,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   if (!view) return e;
   const cv::Mat_<float>* old = view->ranges;
   const Eigen::Isometry3d& T = view->T;  // current -> past frame
-  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
-  // a free vote counts only where `free_if` holds for the placed point (else unknown).
-  // Where its own body was then: less than its travel behind its front, along its motion.
+  // Where its own body was then (own_past): less than its travel behind its front, along its
+  // motion. Those points are unknown in the test against the past frame.
   const double travel = shift && own_past ? shift->head<2>().norm() : 0.0;
   const Eigen::Vector2d along =
       travel > 0 ? Eigen::Vector2d(shift->head<2>() / travel) : Eigen::Vector2d::Zero();
@@ -223,6 +222,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const auto ownPast = [&](const cv::Vec3f& p) {
     return travel > 0 && along.x() * p[0] + along.y() * p[1] + travel <= front + p_.margin;
   };
+  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
+  // a free vote counts only where `free_if` holds for the placed point (else unknown).
   auto testRays = [&](const auto& place, const cv::Mat_<float>& seen,
                       const cv::Mat_<std::uint8_t>* seen_ground, const auto& free_if,
                       bool skip_own_past) {
