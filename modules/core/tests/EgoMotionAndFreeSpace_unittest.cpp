@@ -54,18 +54,9 @@ namespace {
 
 /// Two frames of a still sensor (the scene before and after), remembered and chained, and the
 /// points of the current frame within 0.35 m of a post's axis: a post's cluster.
-struct TwoFrames {
-  LidarFrame f0, f1;
-  FrameChain chain;
-  FreeSpaceCheck check;
-  TwoFrames(const Scene& before, const Scene& after) {
-    const auto s = dynobj::test::smallSensor(32, 512);
-    f0 = dynobj::test::render(before, s, true, 1);
-    f1 = dynobj::test::render(after, s, true, 2);
-    chain.push(0, Eigen::Isometry3d::Identity(), true);
-    chain.push(1, Eigen::Isometry3d::Identity(), true);
-    check.remember(0, f0);
-  }
+struct TwoFrames : dynobj::test::TwoStillFrames {
+  TwoFrames(const Scene& before, const Scene& after)
+      : TwoStillFrames(before, after, dynobj::test::smallSensor(32, 512)) {}
   Cluster clusterAt(double x, double y) const {
     Cluster c;
     for (int r = 0; r < f1.rows(); r++)

@@ -14,24 +14,17 @@ namespace {
 
 /// A "car" of five touching posts (x from 0 to 2.4 m, 3 m to the left of a still sensor) that
 /// drove 1 m forward (+x) between frame 0 and frame 1: its rear 1.4 m is where its front was.
-struct CarAlong {
-  LidarFrame f0, f1;
-  FrameChain chain;
-  FreeSpaceCheck check;
+struct CarAlong : dynobj::test::TwoStillFrames {
   Cluster car;  ///< frame 1's points on it
 
-  explicit CarAlong(const FreeSpaceParams& p = {}) : check(p) {
-    Scene before, after;
-    for (int i = 0; i < 5; i++) {
-      before.posts.push_back({0.3 + 0.45 * i, 3, 0.3, 1.8});
-      after.posts.push_back({1.3 + 0.45 * i, 3, 0.3, 1.8});
-    }
-    const auto s = dynobj::test::smallSensor(32, 720);
-    f0 = dynobj::test::render(before, s, true, 1);
-    f1 = dynobj::test::render(after, s, true, 2);
-    chain.push(0, Eigen::Isometry3d::Identity(), true);
-    chain.push(1, Eigen::Isometry3d::Identity(), true);
-    check.remember(0, f0);
+  /// Five touching posts from x = `x0` - 0.3 on.
+  static Scene car5(double x0) {
+    Scene s;
+    for (int i = 0; i < 5; i++) s.posts.push_back({x0 + 0.45 * i, 3, 0.3, 1.8});
+    return s;
+  }
+  explicit CarAlong(const FreeSpaceParams& p = {})
+      : TwoStillFrames(car5(0.3), car5(1.3), dynobj::test::smallSensor(32, 720), p) {
     for (int r = 0; r < f1.rows(); r++)
       for (int c = 0; c < f1.cols(); c++) {
         const cv::Vec3f& q = f1.xyz(r, c);

@@ -3,6 +3,8 @@
 // cylinders as objects), so stage tests have exact, hand-checkable inputs.
 #pragma once
 
+#include <dynobj/core/FrameChain.h>
+#include <dynobj/core/FreeSpaceCheck.h>
 #include <dynobj/core/LidarFrame.h>
 #include <dynobj/core/SphericalProjection.h>
 
@@ -106,5 +108,20 @@ inline core::LidarFrame render(const Scene& scene, const core::SensorModel& s, b
   f.timestamp_ns = stamp;
   return f;
 }
+
+/// Two frames of a still sensor `s` (the scene `before`, then `after`), chained, the first one
+/// remembered by a free-space check with parameters `p`.
+struct TwoStillFrames {
+  core::LidarFrame f0, f1;
+  core::FrameChain chain;
+  core::FreeSpaceCheck check;
+  TwoStillFrames(const Scene& before, const Scene& after, const core::SensorModel& s,
+                 const core::FreeSpaceParams& p = {})
+      : f0(render(before, s, true, 1)), f1(render(after, s, true, 2)), check(p) {
+    chain.push(0, Eigen::Isometry3d::Identity(), true);
+    chain.push(1, Eigen::Isometry3d::Identity(), true);
+    check.remember(0, f0);
+  }
+};
 
 }  // namespace dynobj::test
