@@ -113,6 +113,8 @@ ABLATIONS=(
   "no set-back top for wide objects (\`[region_growing] slope_factor = 0\`) — before Session 24|[region_growing]\nslope_factor = 0\n"
   "earlier sweeps grown over what the newest held frame still sees (\`[hindsight] later_surface_check = false\`) — before Session 24|[hindsight]\nlater_surface_check = false\n"
   "a rigid mover's own past body counted as occupied (\`[free_space] exclude_own_past = false\`) — before Session 25|[free_space]\nexclude_own_past = false\n"
+  "a thin surface seen through in the past frame alone is free space (\`[free_space] thin_frames = 0\`) — before Session 26|[free_space]\nthin_frames = 0\n"
+  "hindsight counts the whole way from an earlier sweep, sideways too (\`[hindsight] way_along = false\`) — before Session 26|[hindsight]\nway_along = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

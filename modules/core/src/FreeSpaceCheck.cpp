@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "dynobj/core/Config.h"
 
@@ -27,6 +28,7 @@ void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("clearance", clearance);
   v.value("release_free_ratio", release_free_ratio);
   v.value("exclude_own_past", exclude_own_past);
+  v.value("thin_frames", thin_frames);
 }
 
 void FreeSpaceParams::validate() const {
@@ -44,6 +46,7 @@ void FreeSpaceParams::validate() const {
   requireInRange("slide_free_ratio", slide_free_ratio, 0, 1);
   requireInRange("clearance", clearance, 0, 100);
   requireInRange("release_free_ratio", release_free_ratio, 0, 1);
+  requireInRange("thin_frames", thin_frames, 0, 10);
 }
 
 namespace {
@@ -138,6 +141,18 @@ double FreeSpaceCheck::rayBeside(const cv::Mat_<float>& seen, int r, int c, doub
   return nearest;
 }
 
+bool FreeSpaceCheck::resolved(const LidarFrame& frame, int px) const {
+  const int W = frame.cols(), H = frame.rows(), r = px / W, c = px % W;
+  const float range = frame.range(r, c);
+  const double tol = p_.tolerance(range);
+  const auto agrees = [&](int rr, int cc) {
+    const float n = frame.range(rr, (cc + W) % W);
+    return n > 0 && std::abs(n - range) <= tol;
+  };
+  return (agrees(r, c - 1) || agrees(r, c + 1)) &&
+         ((r > 0 && agrees(r - 1, c)) || (r + 1 < H && agrees(r + 1, c)));
+}
+
 double solidRatio(const LidarFrame& frame, const Cluster& cluster, const FreeSpaceParams& p) {
   const int H = frame.rows(), W = frame.cols();
   // Fewer than 3 columns wide (a far person): every pixel is on the outline, none inside.
@@ -222,43 +237,70 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
   const auto ownPast = [&](const cv::Vec3f& p) {
     return travel > 0 && along.x() * p[0] + along.y() * p[1] + travel <= front + p_.margin;
   };
-  // One ray test per cluster point, placed by `place` and looked up in the range image `seen`;
-  // a free vote counts only where `free_if` holds for the placed point (else unknown).
-  auto testRays = [&](const auto& place, const cv::Mat_<float>& seen,
-                      const cv::Mat_<std::uint8_t>* seen_ground, const auto& free_if,
-                      bool skip_own_past) {
-    for (int px : cluster.pixels) {
-      const cv::Vec3f& p = frame.pointAt(px);
-      if (skip_own_past && ownPast(p)) {
-        e.unknown++;
-        continue;
-      }
-      const Eigen::Vector3d q = place(Eigen::Vector3d(p[0], p[1], p[2]));
-      int r = -1, c = -1;
-      if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) {
-        e.unknown++;
-        continue;
-      }
-      const double expected = q.norm(), tol = p_.tolerance(expected);
-      FreeSpaceEvidence one;
-      tally(one, rayBeside(seen, r, c, expected + tol, q.z(), seen_ground), expected, tol);
-      if (one.free > 0 && !free_if(q)) one = {0, 0, 1};
-      e.free += one.free;
-      e.occupied += one.occupied;
-      e.unknown += one.unknown;
+  // One ray test of a point `q` placed in the frame of the range image `seen`.
+  const auto rayTest = [&](const Eigen::Vector3d& q, const cv::Mat_<float>& seen,
+                           const cv::Mat_<std::uint8_t>* seen_ground) {
+    FreeSpaceEvidence one;
+    int r = -1, c = -1;
+    if (!proj_->pixelOf(q.x(), q.y(), q.z(), r, c)) {
+      one.unknown++;
+      return one;
     }
+    const double expected = q.norm(), tol = p_.tolerance(expected);
+    tally(one, rayBeside(seen, r, c, expected + tol, q.z(), seen_ground), expected, tol);
+    return one;
   };
-  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(T * q); }, *old, view->ground,
-           [](const Eigen::Vector3d&) { return true; }, true);
+  // The frames beside the past one (thin_frames), gathered at the first point that needs them.
+  std::vector<PastView> beside;
+  bool gathered = false;
+  for (int px : cluster.pixels) {
+    const cv::Vec3f& p = frame.pointAt(px);
+    if (ownPast(p)) {
+      e.unknown++;
+      continue;
+    }
+    const Eigen::Vector3d q(p[0], p[1], p[2]);
+    const FreeSpaceEvidence then = rayTest(T * q, *old, view->ground);
+    bool free = then.free > 0;
+    // A point whose surface the rays do not resolve, seen through then, is free only where the
+    // frames beside saw through it too: one of them met it (a bar the past rays fell beside),
+    // and it is no evidence either way.
+    if (free && p_.thin_frames > 0 && !resolved(frame, px)) {
+      if (!gathered) {
+        gathered = true;
+        for (long k = 1; k <= p_.thin_frames; ++k)
+          for (const long other : {past - k, past + k})
+            if (other < current)
+              if (const auto v = pastView(frame, current, other, chain)) beside.push_back(*v);
+      }
+      for (const PastView& v : beside)
+        if (rayTest(v.T * q, *v.ranges, v.ground).free == 0) {
+          free = false;
+          break;
+        }
+    }
+    if (then.occupied > 0)
+      e.occupied++;
+    else if (free)
+      e.free++;
+    else
+      e.unknown++;
+  }
   if (!shift || e.free + e.occupied >= p_.min_evidence) return e;
   // No verdict (hidden then): the space it left, moved back by `shift`. Still occupied now
   // refutes the motion. Seen through now proves it only where the old frame saw a surface there
   // (the object itself): the space in front of a static object that only seems to recede, as it
   // comes out from behind an occluder, is seen through too.
   const bool ground_now = ground.size() == frame.range.size();
-  testRays([&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - *shift); }, frame.range,
-           ground_now ? &ground : nullptr,
-           [&](const Eigen::Vector3d& left) { return sawSurface(*old, T * left); }, false);
+  for (int px : cluster.pixels) {
+    const cv::Vec3f& p = frame.pointAt(px);
+    const Eigen::Vector3d left = Eigen::Vector3d(p[0], p[1], p[2]) - *shift;
+    FreeSpaceEvidence one = rayTest(left, frame.range, ground_now ? &ground : nullptr);
+    if (one.free > 0 && !sawSurface(*old, T * left)) one = {0, 0, 1};
+    e.free += one.free;
+    e.occupied += one.occupied;
+    e.unknown += one.unknown;
+  }
   return e;
 }
 

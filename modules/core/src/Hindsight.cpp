@@ -28,6 +28,9 @@ constexpr double kViewSpread = 1.5;
 constexpr double kStartRatio = 0.25;
 constexpr std::size_t kRestSteps = 2;  ///< ... on each of this many steps before it
 
+/// [m] way_along: a track that went less far than this has no direction to measure along.
+constexpr double kMinWent = 0.01;
+
 /// Horizontal extent of an object's box [m].
 double extent(const TrackedObject& o) {
   return (o.box_max - o.box_min).head<2>().norm();
@@ -53,6 +56,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("stop_check", stop_check);
   v.value("rest_speed", rest_speed);
   v.value("later_surface_check", later_surface_check);
+  v.value("way_along", way_along);
 }
 
 void HindsightParams::validate() const {
@@ -185,7 +189,12 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
         }
       }
       const std::size_t j2 = path_[to].first;
-      const double way = (here - path_[to].second).head<2>().norm();
+      // ... along where it went from here, to the newest sweep (way_along): a centroid that
+      // drifts sideways as the view of a parked car turns is not the car setting off.
+      const Eigen::Vector2d step = (path_[to].second - here).head<2>();
+      const Eigen::Vector2d went = (path_.front().second - here).head<2>();
+      const double way =
+          p_.way_along && went.norm() > kMinWent ? step.dot(went.normalized()) : step.norm();
       if (way < p_.min_speed * secondsBetween(held[j], held[j2], j2 - j)) break;  // not moving yet
       if (extent(*earlier) > kViewSpread * extent(o) + p_.max_growth) break;      // merged then
       if (p_.start_check && !movingAt(held, j, *earlier, here, T_jk, out_speed))

@@ -217,6 +217,26 @@ TEST(Hindsight, DoesNotFlagTheLastSweepBeforeAStart) {
   for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(lagged.flagged(j), lagged.post[j]) << "frame " << j;
 }
 
+TEST(Hindsight, CountsTheWayAlongWhereTheTrackWentNotASidewaysDrift) {
+  // Frames 0-3: the centroid drifts sideways (+x, 1 m/s), as a parked car's does while the sensor
+  // drives past and its visible faces turn; frames 3-6: it drives off along +y at 5 m/s (dynamic
+  // in 4-6). From frame 0 the way to frame 3 (speed_window later) is 0.3 m, all sideways: along
+  // where it went from there (frame 6) it is 0.06 m, below min_speed x 0.3 s, and frame 0 is not
+  // flagged; frames 1-3 went 0.5-1.5 m along it. start_check is off, to see this rule alone.
+  const std::vector<Eigen::Vector2d> at = {{4.0, -1.5}, {4.1, -1.5}, {4.2, -1.5}, {4.3, -1.5},
+                                           {4.3, -1.0}, {4.3, -0.5}, {4.3, 0.0}};
+  HindsightParams p;
+  p.start_check = false;
+  Sequence along(at, forward(0));
+  Hindsight(p).revise(along.held());
+  EXPECT_TRUE(along.flagged(0).empty());
+  for (std::size_t j = 1; j < 4; j++) EXPECT_EQ(along.flagged(j), along.post[j]) << "frame " << j;
+  p.way_along = false;  // the whole way, as before Session 26: 0.3 m, so frame 0 too
+  Sequence drift(at, forward(0));
+  Hindsight(p).revise(drift.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(drift.flagged(j), drift.post[j]) << "frame " << j;
+}
+
 TEST(Hindsight, AtTheOldestHeldSweepsTheTracksOwnSpeedThenDecides) {
   // A walker who stood until frame 0 and set off from there at 1.5 m/s (dynamic in frames 4-5).
   // Frame 0 has no step in within the held frames: the speed of its track (50 sweeps old) then

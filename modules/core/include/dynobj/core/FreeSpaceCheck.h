@@ -74,6 +74,13 @@ struct FreeSpaceParams : public StageParams {
   /// motion. A car driving along at 3 m/s covers in a second only 3 m of its 4.4: its rear was
   /// itself then, and counted as a surface already there. Beyond the paper (docs/algorithm.md 7b).
   bool exclude_own_past = true;
+  /// A point whose surface the rays do not resolve (resolved(): no ray beside it in its row, or
+  /// none in its column, met it) may be thinner than the angle between two rays: a fence's bar or
+  /// wire, which a past sweep's rays miss about as often as they hit it. Seen through in the past
+  /// frame, such a point is free only where the frames up to this many either side of it saw
+  /// through it too; where one of them met it, it is no evidence either way (unknown). A mover is
+  /// in none of them; a thin bar is hit in some (0 = the past frame alone). Beyond the paper (7b).
+  int thin_frames = 2;
 
   /// [m] two ranges near `range` agree within this: margin + range_factor x range.
   double tolerance(double range) const { return margin + range_factor * range; }
@@ -144,6 +151,9 @@ class FreeSpaceCheck {
   };
   std::optional<PastView> pastView(const LidarFrame& frame, long current, long past,
                                    const FrameChain& chain) const;
+  /// Is the surface of `frame`'s pixel `px` resolved: does a ray beside it in its row, and one
+  /// in its column, meet it within the tolerance (thin_frames)?
+  bool resolved(const LidarFrame& frame, int px) const;
   /// Did that past frame see a surface other than the ground at the current frame's point `p`?
   bool sawSurfaceThen(const PastView& view, const cv::Vec3f& p) const {
     return sawSurfaceIn(*proj_, p_, view, p);

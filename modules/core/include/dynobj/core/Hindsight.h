@@ -55,6 +55,10 @@ struct HindsightParams : public StageParams {
   /// object has since travelled farther than its own extent: someone standing beside a walker
   /// when the recording starts (false = as before Session 24)
   bool later_surface_check = true;
+  /// the way from an earlier sweep (min_speed) counts only along where the track went from
+  /// there to the newest sweep: a parked car's centroid drifts sideways as the sensor drives past
+  /// and its visible faces turn, before it pulls out (false = the whole way, as before Session 26)
+  bool way_along = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
