@@ -263,8 +263,8 @@ FreeSpaceEvidence FreeSpaceCheck::evidence(const LidarFrame& frame, long current
     const FreeSpaceEvidence then = rayTest(T * q, *old, view->ground);
     bool free = then.free > 0;
     // A point whose surface the rays do not resolve, seen through then, is free only where the
-    // frames beside saw through it too: one of them met it (a bar the past rays fell beside),
-    // and it is no evidence either way.
+    // frames beside saw through it too; where one of them met it (a bar the past frame's rays
+    // fell beside), it is no evidence either way.
     if (free && p_.thin_frames > 0 && !resolved(frame, px)) {
       if (!gathered) {
         gathered = true;
