@@ -115,6 +115,9 @@ ABLATIONS=(
   "a rigid mover's own past body counted as occupied (\`[free_space] exclude_own_past = false\`) — before Session 25|[free_space]\nexclude_own_past = false\n"
   "a thin surface seen through in the past frame alone is free space (\`[free_space] thin_frames = 0\`) — before Session 26|[free_space]\nthin_frames = 0\n"
   "hindsight counts the whole way from an earlier sweep, sideways too (\`[hindsight] way_along = false\`) — before Session 26|[hindsight]\nway_along = false\n"
+  "hindsight asks the newest frame only of grown points, once the object went farther than its extent (\`[hindsight] later_surface_points = false\`) — before Session 27|[hindsight]\nlater_surface_points = false\n"
+  "a mover's part under split_min_share is never split off, and a mover's cluster that is mostly one at rest stays the mover's (\`[association] split_match_radius = 0\`, \`split_rest_majority = false\`) — before Session 27|[association]\nsplit_match_radius = 0\nsplit_rest_majority = false\n"
+  "a mover's region takes the body of one at rest beside it, all but its features (\`[region_growing] nearer_rest_radius = 0\`) — before Session 27|[region_growing]\nnearer_rest_radius = 0\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

@@ -15,6 +15,8 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("new_track_length", new_track_length);
   v.value("split_radius", split_radius);
   v.value("split_min_share", split_min_share);
+  v.value("split_match_radius", split_match_radius);
+  v.value("split_rest_majority", split_rest_majority);
 }
 
 void AssociationParams::validate() const {
@@ -23,6 +25,7 @@ void AssociationParams::validate() const {
   requireInRange("new_track_length", new_track_length, 0, 100);
   requireInRange("split_radius", split_radius, 0, 10);
   requireInRange("split_min_share", split_min_share, 0, 0.5);
+  requireInRange("split_match_radius", split_match_radius, 0, 10);
 }
 
 ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "dynobj/core/Config.h"
 
@@ -27,6 +28,18 @@ class StageClock {
   using Clock = std::chrono::steady_clock;
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
+
+/// The horizontal box (x, y) of the points of `pixels`: its low and high corners.
+std::pair<Eigen::Vector2f, Eigen::Vector2f> horizontalBox(const LidarFrame& frame,
+                                                          const std::vector<int>& pixels) {
+  Eigen::Vector2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
+  for (int px : pixels) {
+    const cv::Vec3f& p = frame.pointAt(px);
+    lo = lo.cwiseMin(Eigen::Vector2f(p[0], p[1]));
+    hi = hi.cwiseMax(Eigen::Vector2f(p[0], p[1]));
+  }
+  return {lo, hi};
+}
 
 std::vector<Eigen::Vector3d> centroidsOf(const std::vector<Cluster>& clusters) {
   std::vector<Eigen::Vector3d> c;
@@ -91,8 +104,11 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       grower_(params.region_growing),
       split_{params.association.split_radius,
              params.clustering.horizontal_distance / params.clustering.vertical_distance,
-             params.clustering.horizontal_distance, params.clustering.min_points,
-             params.association.split_min_share},
+             params.clustering.horizontal_distance,
+             params.clustering.min_points,
+             params.association.split_min_share,
+             params.association.split_match_radius,
+             params.association.split_rest_majority},
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
                    params.free_space.history() + 2))),
@@ -207,7 +223,8 @@ const DetectionResult& DynamicObjectDetector::process(
 
   // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
   const std::vector<int> grown =
-      grower_.grow(frame, r.ground, seeds, r.dynamic, owner_, pastSurfaceTest(frame, dt, seeds));
+      grower_.grow(frame, r.ground, seeds, r.dynamic, owner_,
+                   nearerTheMover(frame, seeds, pastSurfaceTest(frame, dt, seeds)));
   r.seen_static = grower_.refused();
   r.timings.region_growing = clock.lap();
 
@@ -303,12 +320,7 @@ RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
     const auto tr = std::find_if(tracks_.tracks().begin(), tracks_.tracks().end(),
                                  [id = seed_track_[s]](const Track& t) { return t.id == id; });
     if (tr == tracks_.tracks().end() || seeds[s].empty()) continue;
-    Eigen::Vector2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
-    for (int px : seeds[s]) {
-      const cv::Vec3f& p = frame.pointAt(px);
-      lo = lo.cwiseMin(Eigen::Vector2f(p[0], p[1]));
-      hi = hi.cwiseMax(Eigen::Vector2f(p[0], p[1]));
-    }
+    const auto [lo, hi] = horizontalBox(frame, seeds[s]);
     const double travelled = tr->velocity().norm() * dt * static_cast<double>(frame_index_ - past);
     clear[s] = travelled > static_cast<double>((hi - lo).norm());
     any = any || clear[s];
@@ -317,6 +329,29 @@ RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
   return [this, &frame, v = *view, clear](std::size_t obj, int px) {
     return !clear[obj] || !free_space_.sawSurfaceThen(v, frame.pointAt(px));
   };
+}
+
+RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
+    const LidarFrame& frame, const std::vector<std::vector<int>>& seeds,
+    RegionGrower::Admit then) const {
+  const double radius = grower_.params().nearer_rest_radius;
+  if (radius <= 0 || !grower_.params().keep_out_settled) return then;
+  // Per seed set, the feature points of the objects settled at rest whose cluster's box comes
+  // within `radius` of the seeds' box.
+  std::vector<std::vector<int>> beside(seeds.size());
+  for (std::size_t s = 0; s < seeds.size(); s++) {
+    if (seeds[s].empty()) continue;
+    const auto [lo, hi] = horizontalBox(frame, seeds[s]);
+    const auto r = static_cast<float>(radius);
+    for (const Track& tr : tracks_.tracks()) {
+      if (tr.cluster < 0 || !tr.atRest()) continue;
+      const Cluster& c = clusters_[static_cast<std::size_t>(tr.cluster)];
+      if (c.min.x() <= hi.x() + r && c.max.x() >= lo.x() - r && c.min.y() <= hi.y() + r &&
+          c.max.y() >= lo.y() - r)
+        beside[s].insert(beside[s].end(), c.pixels.begin(), c.pixels.end());
+    }
+  }
+  return RegionGrower::nearerOwnSeeds(frame, seeds, beside, radius, std::move(then));
 }
 
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {

@@ -56,6 +56,7 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("stop_check", stop_check);
   v.value("rest_speed", rest_speed);
   v.value("later_surface_check", later_surface_check);
+  v.value("later_surface_points", later_surface_points);
   v.value("way_along", way_along);
 }
 
@@ -77,21 +78,34 @@ Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growin
 }
 
 RegionGrower::Admit Hindsight::laterSurfaceTest(const std::vector<Held>& held, std::size_t j,
-                                                const TrackedObject& then,
+                                                const TrackedObject& now, const TrackedObject& then,
                                                 const Eigen::Vector3d& here,
                                                 const Eigen::Isometry3d& T_jk) {
   if (!p_.later_surface_check) return {};
-  // It cannot have been there itself: it has travelled farther than its extent since.
+  // It cannot have been there itself: it has travelled farther than its extent since (or, point
+  // by point, the point lies outside where it is now).
   const std::size_t k = held.size() - 1;
-  if ((here - path_.front().second).head<2>().norm() <= extent(then)) return {};
+  if (!p_.later_surface_points && (here - path_.front().second).head<2>().norm() <= extent(then))
+    return {};
   const LidarFrame& newest = *held[k].frame;
   if (!proj_ || proj_->sensor().rows != newest.rows() || proj_->sensor().cols != newest.cols())
     proj_.emplace(newest.sensor);
   const cv::Mat_<std::uint8_t>& ground = held[k].result->ground;
+  const Eigen::Isometry3d T_kj = T_jk.inverse();
   const FreeSpaceCheck::PastView later{
-      &newest.range, ground.size() == newest.range.size() ? &ground : nullptr, T_jk.inverse()};
-  return [this, &f = *held[j].frame, later](std::size_t, int px) {
-    return !FreeSpaceCheck::sawSurfaceIn(*proj_, free_space_, later, f.pointAt(px));
+      &newest.range, ground.size() == newest.range.size() ? &ground : nullptr, T_kj};
+  if (!p_.later_surface_points)
+    return [this, &f = *held[j].frame, later](std::size_t, int px) {
+      return !FreeSpaceCheck::sawSurfaceIn(*proj_, free_space_, later, f.pointAt(px));
+    };
+  const double margin = grower_.params().distance;
+  const Eigen::Vector2d lo = now.box_min.head<2>().array() - margin;
+  const Eigen::Vector2d hi = now.box_max.head<2>().array() + margin;
+  return [this, &f = *held[j].frame, later, lo, hi](std::size_t, int px) {
+    const cv::Vec3f& p = f.pointAt(px);
+    const Eigen::Vector2d q = (later.T * Eigen::Vector3d(p[0], p[1], p[2])).head<2>();
+    const bool where_now = (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
+    return where_now || !FreeSpaceCheck::sawSurfaceIn(*proj_, free_space_, later, p);
   };
 }
 
@@ -201,9 +215,14 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
         break;  // about to start
       const LidarFrame& f = *held[j].frame;
       keepOutSettled(r, f, o.id);
-      const int grown = grower_.grow(f, r.ground, {earlier->cluster}, r.dynamic, owner_,
-                                     laterSurfaceTest(held, j, *earlier, here, T_jk))[0];
-      for (int px : earlier->cluster) r.seeds(px / f.cols(), px % f.cols()) = 255;
+      const RegionGrower::Admit later = laterSurfaceTest(held, j, o, *earlier, here, T_jk);
+      std::vector<int> seeds = earlier->cluster;
+      if (later && p_.later_surface_points)  // its own points, merged with someone standing
+        seeds.erase(
+            std::remove_if(seeds.begin(), seeds.end(), [&later](int px) { return !later(0, px); }),
+            seeds.end());
+      const int grown = grower_.grow(f, r.ground, {seeds}, r.dynamic, owner_, later)[0];
+      for (int px : seeds) r.seeds(px / f.cols(), px % f.cols()) = 255;
       earlier->dynamic = true;
       earlier->points = grown;
       added += grown;

@@ -2,8 +2,10 @@
 #include "dynobj/core/RegionGrower.h"
 
 #include <cmath>
+#include <memory>
 
 #include "dynobj/core/Config.h"
+#include "dynobj/core/PointGrid.h"
 
 namespace dynobj::core {
 
@@ -16,6 +18,7 @@ void RegionGrowingParams::visit(ParamVisitor& v) {
   v.value("max_extent", max_extent);
   v.value("max_pixels", max_pixels);
   v.value("keep_out_settled", keep_out_settled);
+  v.value("nearer_rest_radius", nearer_rest_radius);
   v.value("past_surface_check", past_surface_check);
 }
 
@@ -27,6 +30,7 @@ void RegionGrowingParams::validate() const {
   requireInRange("set_back_radius", set_back_radius, 0, 100);
   requirePositive("max_extent", max_extent);
   requireInRange("max_pixels", max_pixels, 1, 10000000);
+  requireInRange("nearer_rest_radius", nearer_rest_radius, 0, 10);
 }
 
 bool RegionGrowingParams::joins(const cv::Vec3f& p, double rp, const cv::Vec3f& q, double rq,
@@ -46,6 +50,38 @@ bool RegionGrowingParams::joins(const cv::Vec3f& p, double rp, const cv::Vec3f& 
 
 RegionGrower::RegionGrower(const RegionGrowingParams& p) : p_(p) {
   p_.validate();
+}
+
+RegionGrower::Admit RegionGrower::nearerOwnSeeds(const LidarFrame& frame,
+                                                 const std::vector<std::vector<int>>& seeds,
+                                                 const std::vector<std::vector<int>>& others,
+                                                 double radius, Admit then) {
+  auto grid = [&frame, radius](const std::vector<int>& pixels) {
+    PointGrid g(radius);
+    for (int px : pixels) {
+      const cv::Vec3f& p = frame.pointAt(px);
+      g.add(Eigen::Vector3d(p[0], p[1], p[2]));
+    }
+    return g;
+  };
+  auto own = std::make_shared<std::vector<PointGrid>>();
+  auto rest = std::make_shared<std::vector<PointGrid>>();
+  bool any = false;
+  for (std::size_t i = 0; i < seeds.size(); i++) {
+    own->push_back(grid(seeds[i]));
+    rest->push_back(grid(i < others.size() ? others[i] : std::vector<int>{}));
+    any = any || !rest->back().empty();
+  }
+  if (!any) return then;
+  return [&frame, own, rest, then = std::move(then)](std::size_t obj, int px) {
+    if (then && !then(obj, px)) return false;
+    const PointGrid& r = (*rest)[obj];
+    if (r.empty()) return true;
+    const cv::Vec3f& p = frame.pointAt(px);
+    const Eigen::Vector3d q(p[0], p[1], p[2]);
+    const double to_rest = r.nearestSq(q);
+    return !std::isfinite(to_rest) || (*own)[obj].nearestSq(q) <= to_rest;
+  };
 }
 
 void RegionGrower::keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner) {

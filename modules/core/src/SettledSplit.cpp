@@ -3,47 +3,30 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <unordered_map>
+
+#include "dynobj/core/PointGrid.h"
 
 namespace dynobj::core {
 namespace {
 
-/// A shape's points on a grid of `radius` cells in the scaled space (x, y, z x z_scale) of the
-/// clustering (Eq. 6-7): near() is exact.
+/// A shape's points in the scaled space (x, y, z x z_scale) of the clustering (Eq. 6-7).
 class ShapeGrid {
  public:
   ShapeGrid(const std::vector<Eigen::Vector3f>& shape, const Eigen::Isometry3d& to_now,
             double radius, double z_scale)
-      : r_(radius), z_scale_(z_scale) {
-    for (const Eigen::Vector3f& s : shape) {
-      const Eigen::Vector3d q = scaled(to_now * s.cast<double>());
-      cells_[key(cell(q.x()), cell(q.y()))].push_back(q);
-    }
+      : grid_(radius), z_scale_(z_scale) {
+    for (const Eigen::Vector3f& s : shape) grid_.add(scaled(to_now * s.cast<double>()));
   }
   bool near(const cv::Vec3f& p) const {
-    const Eigen::Vector3d x = scaled(Eigen::Vector3d(p[0], p[1], p[2]));
-    const std::int64_t cx = cell(x.x()), cy = cell(x.y());
-    for (std::int64_t i = cx - 1; i <= cx + 1; i++)
-      for (std::int64_t j = cy - 1; j <= cy + 1; j++) {
-        const auto it = cells_.find(key(i, j));
-        if (it == cells_.end()) continue;
-        for (const Eigen::Vector3d& q : it->second)
-          if ((q - x).squaredNorm() <= r_ * r_) return true;
-      }
-    return false;
+    return std::isfinite(grid_.nearestSq(scaled(Eigen::Vector3d(p[0], p[1], p[2]))));
   }
 
  private:
-  std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / r_)); }
-  static std::uint64_t key(std::int64_t i, std::int64_t j) {  // unsigned: no shift of a negative
-    return (static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffU);
-  }
   Eigen::Vector3d scaled(const Eigen::Vector3d& q) const {
     return {q.x(), q.y(), q.z() * z_scale_};
   }
-  double r_, z_scale_;
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3d>> cells_;
+  PointGrid grid_;
+  double z_scale_;
 };
 
 bool reaches(const Cluster& c, const Eigen::Vector3d& p, double margin) {
@@ -90,20 +73,31 @@ std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& fra
         resting.push_back(rest.id);
         break;
       }
-      // Two objects, each a fair part of the cluster: a sliver is the edge of one of them (a
-      // car's end over the place of a small thing it hid, a false mover on a resting object's
-      // edge), and the cluster is left as it was.
-      const double sliver = p.min_share * static_cast<double>(clusters[m].pixels.size());
-      if (static_cast<double>(std::min(at_rest.pixels.size(), mover.pixels.size())) < sliver)
-        continue;
       // The mover's part must lie where the mover was expected: a walker's lies within
       // centimetres of its prediction, while a false mover's (a tree, a fence) wanders, a resting
       // object that sets off is not at rest any more, and the face of a resting object that a
-      // walker hid is not in its last shape. Else nothing changes.
+      // walker hid is not in its last shape.
+      // Two objects, each a fair part of the cluster: a sliver is the edge of one of them (a
+      // car's end over the place of a small thing it hid, a false mover on a resting object's
+      // edge). A walker beside a wall or a parked car is a small part of their cluster too: the
+      // mover's part may be small where it matches its prediction closely.
       const std::size_t mover_track = unseen.atRest() ? static_cast<std::size_t>(o) : s;
-      if ((centroidOf(frame, mover.pixels).head<2>() - predicted[mover_track].head<2>()).norm() >
-          p.radius)
+      const double off =
+          (centroidOf(frame, mover.pixels).head<2>() - predicted[mover_track].head<2>()).norm();
+      const double sliver = p.min_share * static_cast<double>(clusters[m].pixels.size());
+      if (off > p.radius || static_cast<double>(at_rest.pixels.size()) < sliver ||
+          (static_cast<double>(mover.pixels.size()) < sliver && off > p.match_radius)) {
+        // No split. A cluster that is mostly the resting object is not the mover's to flag: the
+        // resting track takes it, the mover coasts (else nothing changes).
+        if (p.rest_majority && unseen.atRest() &&
+            2 * at_rest.pixels.size() >= clusters[m].pixels.size()) {
+          cluster_to_track[m] = static_cast<int>(s);
+          matched[s] = 1;
+          resting.push_back(rest.id);
+          break;
+        }
         continue;
+      }
       Cluster& kept = clusters[m];
       kept.pixels = std::move(owner.atRest() ? at_rest.pixels : mover.pixels);
       Cluster part;

@@ -169,6 +169,44 @@ TEST(RegionGrower, AnAdmissionTestKeepsRefusedPixelsOutOfEveryRegion) {
   EXPECT_TRUE(grower.refused().empty());
 }
 
+TEST(RegionGrower, NearerOwnSeedsKeepsTheBodyOfOneAtRestBesideTheMover) {
+  // The two touching posts, their pixels of even rows the features (the first a mover's seeds,
+  // the second's those of one standing, kept out). The keep-out alone holds the second's
+  // features only, and the region takes the rest of that body; refusing what lies nearer to its
+  // features than to the mover's own (within 0.5 m) holds all of it, and takes all of the first.
+  const TwoPosts t;
+  const int W = t.f.cols();
+  std::vector<int> seeds, beside;
+  for (int p : t.first)
+    if ((p / W) % 2 == 0) seeds.push_back(p);
+  for (int p : t.second)
+    if ((p / W) % 2 == 0) beside.push_back(p);
+  ASSERT_GT(seeds.size(), 4u);
+  ASSERT_GT(beside.size(), 4u);
+  auto grow = [&](const RegionGrower::Admit& admit) {
+    cv::Mat_<std::uint8_t> mask;
+    cv::Mat_<int> owner(t.f.rows(), t.f.cols(), RegionGrower::kFree);
+    RegionGrower::keepOut(beside, owner);
+    RegionGrower().grow(t.f, t.ground, {seeds}, mask, owner, admit);
+    std::pair<std::size_t, std::size_t> taken{0, 0};
+    for (int p : t.first) taken.first += mask(p / W, p % W) ? 1 : 0;
+    for (int p : t.second) taken.second += mask(p / W, p % W) ? 1 : 0;
+    return taken;
+  };
+  const auto alone = grow({});
+  EXPECT_EQ(alone.first, t.first.size());
+  EXPECT_GT(alone.second, 0u);
+  const auto held = grow(RegionGrower::nearerOwnSeeds(t.f, {seeds}, {beside}, 0.5, {}));
+  EXPECT_EQ(held.first, t.first.size());
+  EXPECT_EQ(held.second, 0u);
+  // Nothing beside it: no test at all; and what `then` refuses stays refused.
+  EXPECT_FALSE(RegionGrower::nearerOwnSeeds(t.f, {seeds}, {{}}, 0.5, {}));
+  const RegionGrower::Admit none = [](std::size_t, int) { return false; };
+  const auto nothing = grow(RegionGrower::nearerOwnSeeds(t.f, {seeds}, {beside}, 0.5, none));
+  EXPECT_EQ(nothing.first, seeds.size());
+  EXPECT_EQ(nothing.second, 0u);
+}
+
 TEST(RegionGrower, JoinsATopSetBackOnlyAboveAndWithinTheSlope) {
   RegionGrowingParams p;      // distance 0.25, range_factor 1.2, depth_factor 0.02, slope_factor 3
   const double gap = 0.0245;  // 1.4 deg between rows (OS0-64) ...

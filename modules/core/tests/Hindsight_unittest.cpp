@@ -8,6 +8,8 @@
 #include <dynobj/core/Hindsight.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "SyntheticScene.h"
 
 using namespace dynobj::core;
@@ -323,6 +325,39 @@ TEST(Hindsight, AnEarlierSweepDoesNotTakeWhatTheNewestFrameStillSeesThere) {
     EXPECT_EQ(now.flagged(j), now.post[j]) << "frame " << j;
     EXPECT_EQ(now.flagged(j), before.flagged(j)) << "frame " << j;
   }
+}
+
+TEST(Hindsight, AnEarlierClusterMergedWithSomeoneStandingGivesUpTheirPoints) {
+  // A walker at 1.5 m/s passes someone standing at (4, -1.5): in frame 0 they touch and their
+  // cluster is one (the box 1.34 m across; the walker goes only 0.9 m by the newest frame, so
+  // the walker has not "travelled farther than its extent"). The newest frame still sees the
+  // one standing there: their points are not the walker's, in the cluster as in the growth.
+  const Post standing{4, -1.5, 0.3, 1.8};
+  auto merged = [&standing] {
+    Sequence seq(walking(7), forward(0), 3, {standing});
+    TrackedObject& o = seq.results[0].objects[0];
+    const LidarFrame& f = seq.frames[0];
+    for (int px : postPixels(f, standing.x, standing.y, standing.radius))
+      if (f.xyz(px / f.cols(), px % f.cols())[2] > 0.3f) o.cluster.push_back(px);
+    o.box_min.y() -= 0.6;
+    return seq;
+  };
+  Sequence before = merged(), now = merged();
+  HindsightParams off;
+  off.later_surface_points = false;
+  Hindsight(off).revise(before.held());
+  Hindsight().revise(now.held());
+  const std::vector<int> other = postPixels(now.frames[0], standing.x, standing.y, 0.3);
+  ASSERT_FALSE(other.empty());
+  auto taken = [](const std::vector<int>& flagged, const std::vector<int>& of) {
+    return std::count_if(of.begin(), of.end(), [&flagged](int px) {
+      return std::find(flagged.begin(), flagged.end(), px) != flagged.end();
+    });
+  };
+  EXPECT_GT(taken(before.flagged(0), other), static_cast<long>(other.size() / 2));
+  EXPECT_EQ(taken(now.flagged(0), other), 0);
+  EXPECT_GE(taken(now.flagged(0), now.post[0]), static_cast<long>(now.post[0].size() * 9 / 10));
+  for (std::size_t j = 1; j < 4; j++) EXPECT_EQ(now.flagged(j), now.post[j]) << "frame " << j;
 }
 
 TEST(Hindsight, JudgesMotionThroughTheEgoMotion) {

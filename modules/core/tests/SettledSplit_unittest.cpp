@@ -66,10 +66,14 @@ struct MergeScene {
   }
 
   void split(std::vector<int>& cluster_to_track, double radius = 0.2,
-             double min_share = SettledSplitParams{}.min_share) {
+             double min_share = SettledSplitParams{}.min_share,
+             double match_radius = SettledSplitParams{}.match_radius,
+             bool rest_majority = SettledSplitParams{}.rest_majority) {
     SettledSplitParams p;
     p.radius = radius;
     p.min_share = min_share;
+    p.match_radius = match_radius;
+    p.rest_majority = rest_majority;
     splitSettled(p, frame, 1, chain, tracks, predicted, clusters, cluster_to_track);
   }
 
@@ -129,13 +133,11 @@ TEST(SettledSplit, TheShapeIsMovedWithTheSensor) {
   EXPECT_EQ(c, (std::vector<int>{1}));
 }
 
-TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
-  // A false mover (a tree) that found no cluster and touches a resting object must not live on
-  // the resting object's edge: a part of 8 of 40 points (a fifth) is not taken, 16 of 32 is.
-  MergeScene small(1), fair(2);
-  std::vector<int> a = {0}, b = {0};
+/// A resting object of four columns and a walker's one column beside it: the walker's part is a
+/// fifth of the merged cluster.
+MergeScene smallPart() {
+  MergeScene small(1);
   small.tracks[0].shape.clear();
-  // A resting object of four columns, so the walker's one column is a fifth of the cluster.
   for (int col : {32, 33}) {
     std::vector<int> more;
     column(small.frame, col, 3.0f, 0.1f * static_cast<float>(col - 30), more);
@@ -146,6 +148,17 @@ TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
     if (p[1] < 0.55f) small.tracks[0].shape.emplace_back(p[0] + 0.5f, p[1], p[2]);
   }
   computeClusterShape(small.frame, small.clusters[0]);
+  return small;
+}
+
+TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
+  // A false mover (a tree) that found no cluster and touches a resting object must not live on
+  // the resting object's edge: a part of 8 of 40 points (a fifth), 0.15 m from where its track
+  // expected it, is not taken; 16 of 32 is.
+  MergeScene small = smallPart(), fair(2);
+  small.predicted[1] = {3.0, 0.75, 0.0};
+  fair.predicted[1] = {3.0, 0.75, 0.0};
+  std::vector<int> a = {0}, b = {0};
   MergeScene lenient = small;
   small.split(a);
   EXPECT_EQ(small.clusters.size(), 1u);
@@ -158,6 +171,23 @@ TEST(SettledSplit, AMoverThatIsASmallPartOfItKeepsCoasting) {
   EXPECT_EQ(lenient.clusters.size(), 2u);
   AssociationParams bad;
   bad.split_min_share = 0.6;  // both parts cannot hold more than half
+  EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(SettledSplit, ASmallPartWhereTheMoverWasExpectedIsTheMovers) {
+  // A walker beside a wall: a fifth of the merged cluster, but its centroid 0.05 m from the
+  // walker's prediction (split_match_radius 0.1 m): the cluster is split. With 0, it is not.
+  MergeScene s = smallPart(), off = smallPart();
+  std::vector<int> a = {0}, b = {0};
+  s.split(a);
+  ASSERT_EQ(s.clusters.size(), 2u);
+  EXPECT_EQ(a, (std::vector<int>{0, 1}));
+  EXPECT_EQ(MergeScene::sorted(s.clusters[1].pixels), MergeScene::sorted(s.walker_px));
+  off.split(b, 0.2, SettledSplitParams{}.min_share, 0.0);
+  EXPECT_EQ(off.clusters.size(), 1u);
+  EXPECT_EQ(b, (std::vector<int>{0}));
+  AssociationParams bad;
+  bad.split_match_radius = -0.1;
   EXPECT_THROW(bad.validate(), ParameterError);
 }
 
@@ -204,13 +234,24 @@ TEST(SettledSplit, RememberShapesKeepsOnlyTracksAtRest) {
 
 TEST(SettledSplit, TheMoversPartMustLieWhereTheMoverWasExpected) {
   // The walker's track expected it 0.5 m from where its part lies (a false mover wandering over a
-  // fence, or a resting object's face the walker hid): nothing changes, whichever took it.
-  MergeScene s;
+  // fence, or a resting object's face the walker hid): no split, whichever took it. Taken by the
+  // walker's track, the cluster, half of it the standing one's, goes to the standing one's
+  // (split_rest_majority; the walker coasts); without that rule nothing changes.
+  MergeScene s, kept;
   s.predicted[1] = {3.0, 1.15, 0.0};
-  std::vector<int> a = {1}, b = {0};
+  kept.predicted[1] = {3.0, 1.15, 0.0};
+  std::vector<int> a = {1}, b = {0}, c = {1};
   s.split(a);
   EXPECT_EQ(s.clusters.size(), 1u);
-  EXPECT_EQ(a, (std::vector<int>{1}));
+  EXPECT_EQ(a, (std::vector<int>{0}));
+  kept.split(c, 0.2, SettledSplitParams{}.min_share, SettledSplitParams{}.match_radius, false);
+  EXPECT_EQ(kept.clusters.size(), 1u);
+  EXPECT_EQ(c, (std::vector<int>{1}));
+  MergeScene wide(3);  // the standing one's part less than half (16 of 40): the walker keeps it
+  wide.predicted[1] = {3.0, 1.25, 0.0};
+  std::vector<int> d = {1};
+  wide.split(d);
+  EXPECT_EQ(d, (std::vector<int>{1}));
   MergeScene t;
   t.predicted[1] = {3.0, 1.15, 0.0};
   t.split(b);

@@ -28,6 +28,14 @@ struct AssociationParams : public StageParams {
   /// ... only when each part holds at least this share of the merged cluster's points (a sliver
   /// is the edge of one object: a car's end over the place of a small thing it hid)
   double split_min_share = 0.25;
+  /// [m] ... except that a mover's part under that share is still the mover's when its centroid
+  /// lies this near the mover's prediction (a walker beside a wall or a parked car, which holds
+  /// far more points); 0 = off (before Session 27)
+  double split_match_radius = 0.1;
+  /// when no split is made and the mover's track took the cluster, the resting object's track
+  /// takes it whole if its part holds at least half of the points (the mover coasts; false = the
+  /// mover keeps it, and with it the resting object, as before Session 27)
+  bool split_rest_majority = true;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -149,6 +149,12 @@ class DynamicObjectDetector {
   /// that has travelled farther than its own extent since then. Empty when off or without it.
   RegionGrower::Admit pastSurfaceTest(const LidarFrame& frame, double dt,
                                       const std::vector<std::vector<int>>& seeds) const;
+  /// Beyond the paper (§8, [region_growing] nearer_rest_radius): `then`, and a pixel nearer to
+  /// the feature points of an object settled at rest beside a seed set than to its seeds (both
+  /// within the radius) is refused.
+  RegionGrower::Admit nearerTheMover(const LidarFrame& frame,
+                                     const std::vector<std::vector<int>>& seeds,
+                                     RegionGrower::Admit then) const;
   /// Objects of the result, history for the next frame.
   void endFrame(const LidarFrame& frame, const std::vector<int>& grown);
   void collectObjects(const LidarFrame& frame, const std::vector<int>& grown);

@@ -55,6 +55,12 @@ struct HindsightParams : public StageParams {
   /// object has since travelled farther than its own extent: someone standing beside a walker
   /// when the recording starts (false = as before Session 24)
   bool later_surface_check = true;
+  /// ... asked point by point, of the cluster's own points too: any point outside the object's
+  /// box in the newest held frame (plus [region_growing] distance) that the newest frame sees on
+  /// a surface, whatever the object's travel (a walker who passed someone standing when the
+  /// recording started, merged with them in one cluster; false = as before Session 27: grown
+  /// points only, once the object has travelled farther than its extent)
+  bool later_surface_points = true;
   /// the way from an earlier sweep (min_speed) counts only along where the track went from
   /// there to the newest sweep: a parked car's centroid drifts sideways as the sensor drives past
   /// and its visible faces turn, before it pulls out (false = the whole way, as before Session 26)
@@ -105,10 +111,11 @@ class Hindsight {
   std::optional<SphericalProjection> proj_;  ///< Eq. (1) for the newest held frame's sensor
   cv::Mat_<int> owner_;
   /// later_surface_check for the growth of `then` at held frame j (T_jk as in movingAt; `here`
-  /// its centroid then, in the newest frame's coordinates): empty when it does not apply.
+  /// its centroid then, in the newest frame's coordinates; `now` the object in the newest held
+  /// frame): empty when it does not apply.
   RegionGrower::Admit laterSurfaceTest(const std::vector<Held>& held, std::size_t j,
-                                       const TrackedObject& then, const Eigen::Vector3d& here,
-                                       const Eigen::Isometry3d& T_jk);
+                                       const TrackedObject& now, const TrackedObject& then,
+                                       const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk);
   /// owner_ sized for `f` and cleared, with the settled objects of `r` (but `except_id`) and the
   /// pixels its region growing refused (`seen_static`) kept out.
   void keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id);

@@ -36,6 +36,10 @@ struct RegionGrowingParams : public StageParams {
   /// a mover's region does not take the points of an object whose track was judged static
   /// settled_frames ([tracking]) times in a row: a walker passing someone who stands
   bool keep_out_settled = true;
+  /// [m] ... nor a point nearer to such an object's feature points than to the mover's own seeds,
+  /// both within this distance: the body of one who stands beside a walker, of which the feature
+  /// points alone are kept out (0 = off, as before Session 27)
+  double nearer_rest_radius = 0.5;
   /// a mover's region does not take a point that the free-space check's lookback frame saw on
   /// a surface, when the mover has since travelled farther than its own extent (so it was not
   /// there itself): a crate, a pillar or a parked car it touches. Beyond the paper (§8)
@@ -73,6 +77,14 @@ class RegionGrower {
   /// Marks `pixels` (row * W + col) of a sized `owner` kept out of the next grow(): the points
   /// of an object known to stand still, which a mover beside it must not take.
   static void keepOut(const std::vector<int>& pixels, cv::Mat_<int>& owner);
+
+  /// An `admit` for grow(): refuses, for object i, a pixel whose point lies nearer to one of the
+  /// points of `others[i]` (pixel indices: the feature points of objects at rest beside it) than
+  /// to every one of its own `seeds[i]`, both within `radius` [m]; and whatever `then` refuses.
+  /// Returns `then` when no object has others.
+  static Admit nearerOwnSeeds(const LidarFrame& frame, const std::vector<std::vector<int>>& seeds,
+                              const std::vector<std::vector<int>>& others, double radius,
+                              Admit then);
 
   /// The pixels the last grow() kept out because `admit` refused them.
   const std::vector<int>& refused() const { return refused_; }

@@ -21,6 +21,10 @@ struct SettledSplitParams {
   double margin = 0.35;         ///< [m] the other track's prediction lies within the box + this
   int min_points = 4;           ///< a part smaller than this is no part
   double min_share = 0.25;      ///< both parts hold at least this share of the cluster's points
+  double match_radius = 0.1;    ///< [m] ... but the mover's part may be smaller when its centroid
+                                ///< lies this near the mover's prediction
+  bool rest_majority = true;    ///< no split, the mover's cluster mostly the resting object's:
+                                ///< the resting track takes it whole
 };
 
 /// For each track at rest (Track::atRest) or dynamic that `cluster_to_track` left without a
@@ -29,8 +33,12 @@ struct SettledSplitParams {
 /// (moved into sweep `frame_index` by `chain`) are the resting object's, the others the mover's.
 /// - the resting object's part is too small (< min_points): nothing changes;
 /// - the mover's is: the whole cluster goes to the resting track (the mover coasts);
-/// - else, only when each part holds `min_share` of the points and the mover's part lies within
-///   `radius` of the mover's prediction, the cluster is split: each track takes its part.
+/// - else, only when each part holds `min_share` of the points (the mover's part may hold fewer
+///   when its centroid lies within `match_radius` of the mover's prediction) and the mover's part
+///   lies within `radius` of the mover's prediction, the cluster is split: each track takes its
+///   part;
+/// - else, when the resting track found no cluster and its part holds half of the points or
+///   more (`rest_majority`), the whole cluster goes to the resting track (the mover coasts).
 /// New parts are appended to `clusters` and `cluster_to_track`. Returns the ids of the resting
 /// tracks given a part (they keep their shape: rememberShapes' `keep`).
 std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& frame,
