@@ -64,13 +64,15 @@ RegionGrower::Admit RegionGrower::nearerOwnSeeds(const LidarFrame& frame,
     }
     return g;
   };
-  auto own = std::make_shared<std::vector<PointGrid>>();
-  auto rest = std::make_shared<std::vector<PointGrid>>();
+  // Grids only for the objects that have others beside them (the rest stay empty, unread).
+  auto own = std::make_shared<std::vector<PointGrid>>(seeds.size(), PointGrid(radius));
+  auto rest = std::make_shared<std::vector<PointGrid>>(seeds.size(), PointGrid(radius));
   bool any = false;
-  for (std::size_t i = 0; i < seeds.size(); i++) {
-    own->push_back(grid(seeds[i]));
-    rest->push_back(grid(i < others.size() ? others[i] : std::vector<int>{}));
-    any = any || !rest->back().empty();
+  for (std::size_t i = 0; i < seeds.size() && i < others.size(); i++) {
+    if (others[i].empty()) continue;
+    (*own)[i] = grid(seeds[i]);
+    (*rest)[i] = grid(others[i]);
+    any = true;
   }
   if (!any) return then;
   return [&frame, own, rest, then = std::move(then)](std::size_t obj, int px) {

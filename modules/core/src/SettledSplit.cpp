@@ -65,12 +65,15 @@ std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& fra
         const cv::Vec3f& q = frame.pointAt(px);
         (grid.near(q) ? at_rest : mover).pixels.push_back(px);
       }
+      auto toResting = [&] {  // the whole cluster to the unseen resting track: the mover coasts
+        cluster_to_track[m] = static_cast<int>(s);
+        matched[s] = 1;
+        resting.push_back(rest.id);
+      };
       if (at_rest.pixels.size() < enough) continue;  // the resting object is not in it
       if (mover.pixels.size() < enough) {            // the resting object alone
         if (!unseen.atRest()) continue;              // ... and already with its track
-        cluster_to_track[m] = static_cast<int>(s);   // the mover coasts
-        matched[s] = 1;
-        resting.push_back(rest.id);
+        toResting();
         break;
       }
       // The mover's part must lie where the mover was expected: a walker's lies within
@@ -89,14 +92,11 @@ std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& fra
           (static_cast<double>(mover.pixels.size()) < sliver && off > p.match_radius)) {
         // No split. A cluster that is mostly the resting object is not the mover's to flag: the
         // resting track takes it, the mover coasts (else nothing changes).
-        if (p.rest_majority && unseen.atRest() &&
-            2 * at_rest.pixels.size() >= clusters[m].pixels.size()) {
-          cluster_to_track[m] = static_cast<int>(s);
-          matched[s] = 1;
-          resting.push_back(rest.id);
-          break;
-        }
-        continue;
+        if (!p.rest_majority || !unseen.atRest() ||
+            2 * at_rest.pixels.size() < clusters[m].pixels.size())
+          continue;
+        toResting();
+        break;
       }
       Cluster& kept = clusters[m];
       kept.pixels = std::move(owner.atRest() ? at_rest.pixels : mover.pixels);
