@@ -118,6 +118,8 @@ ABLATIONS=(
   "hindsight asks the newest frame only of grown points, once the object went farther than its extent (\`[hindsight] later_surface_points = false\`) — before Session 27|[hindsight]\nlater_surface_points = false\n"
   "a mover's part under split_min_share is never split off, and a mover's cluster that is mostly one at rest stays the mover's (\`[association] split_match_radius = 0\`, \`split_rest_majority = false\`) — before Session 27|[association]\nsplit_match_radius = 0\nsplit_rest_majority = false\n"
   "a mover's region takes the body of one at rest beside it, all but its features (\`[region_growing] nearer_rest_radius = 0\`) — before Session 27|[region_growing]\nnearer_rest_radius = 0\n"
+  "a long cluster is a rigid mover only when its ends moved with its centroid (\`[movement] rigid_ends_length = 0\`) — before Session 28|[movement]\nrigid_ends_length = 0\n"
+  "a mover that clearly stopped is at rest only once settled, 10 sweeps later (\`[tracking] stop_at_rest = false\`) — before Session 28|[tracking]\nstop_at_rest = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

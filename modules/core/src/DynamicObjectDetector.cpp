@@ -213,12 +213,13 @@ const DetectionResult& DynamicObjectDetector::process(
                                               predicted, clusters_, cluster_to_track);
   findWeakSeeds(predicted, cluster_to_track);
   tracks_.update(frame_index_, clusters_, cluster_to_track);
-  rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
   r.timings.association = clock.lap();
 
   // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window, outliers
-  // rejected; the clusters of dynamic tracks are the seeds.
+  // rejected; the clusters of dynamic tracks are the seeds. Then the objects at rest keep their
+  // points, for the next frame's split.
   const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
+  rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
   r.timings.movement = clock.lap();
 
   // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
@@ -282,7 +283,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
   for (Track& tr : tracks_.tracks()) {
     if (tr.cluster < 0) continue;
     const Cluster& c = clusters_[static_cast<std::size_t>(tr.cluster)];
-    MovementDecision d = movement_.analyse(tr.window, chain_, c, dt);
+    MovementDecision d = movement_.analyse(tr.window, chain_, c, dt, tr.atRest());
     free_space_.review(frame, frame_index_, c, chain_, dt, d, result_.ground);  // beyond the paper
     tracks_.decide(tr, d);                                                      // with hysteresis
     if (!tr.dynamic) continue;
@@ -302,7 +303,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
   }
   if (grower_.params().keep_out_settled)  // beyond the paper: a mover beside one at rest (as §9)
     for (const Track& tr : tracks_.tracks())
-      if (tr.cluster >= 0 && tr.settled && !tr.dynamic)
+      if (tr.cluster >= 0 && tr.atRest())
         RegionGrower::keepOut(clusters_[static_cast<std::size_t>(tr.cluster)].pixels, owner_);
   return seeds;
 }
@@ -390,7 +391,7 @@ void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::v
     o.box_max = c.max;
     o.points = static_cast<int>(c.pixels.size());
     o.dynamic = tr.dynamic;
-    o.settled = tr.settled;
+    o.settled = tr.atRest();
     o.age = tr.age;
     o.cluster = c.pixels;
     const auto it = std::find(seed_track_.begin(), seed_track_.end(), tr.id);

@@ -17,6 +17,7 @@ void TrackingParams::visit(ParamVisitor& v) {
   v.value("release_frames", release_frames);
   v.value("settled_frames", settled_frames);
   v.value("settled_confirm_frames", settled_confirm_frames);
+  v.value("stop_at_rest", stop_at_rest);
 }
 
 void TrackingParams::validate() const {
@@ -134,6 +135,7 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
   // would lag it.
   if ((d.stopped || d.refuted) && t.dynamic) {
     t.dynamic = false;
+    t.halted = p_.stop_at_rest && d.stopped;
     t.positives = 0;
     t.negatives = p_.release_frames;
   } else if (moving) {
@@ -142,6 +144,7 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
     if (t.positives >= (t.settled ? p_.settled_confirm_frames : p_.confirm_frames)) {
       t.dynamic = true;
       t.settled = false;
+      t.halted = false;
     }
   } else if (d.enough_history && !d.early) {  // a short window proves no standstill
     t.negatives++;

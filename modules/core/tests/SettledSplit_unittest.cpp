@@ -97,6 +97,23 @@ TEST(SettledSplit, TheWalkersClusterGivesTheStandingOneItsPoints) {
   EXPECT_NEAR(s.clusters[1].centroid.y(), 0.05, 1e-5);
 }
 
+TEST(SettledSplit, AWalkerWhoJustStoppedIsAtRestToo) {
+  // One who paused a moment ago (released by a clear stop, not settled): their points are theirs.
+  MergeScene s;
+  s.tracks[0].settled = false;
+  std::vector<int> ignored = {1};
+  s.split(ignored);
+  EXPECT_EQ(s.clusters.size(), 1u);  // neither settled nor stopped: no split
+  MergeScene paused;
+  paused.tracks[0].settled = false;
+  paused.tracks[0].halted = true;
+  std::vector<int> to_track = {1};
+  paused.split(to_track);
+  ASSERT_EQ(to_track, (std::vector<int>{1, 0}));
+  EXPECT_EQ(MergeScene::sorted(paused.clusters[0].pixels), MergeScene::sorted(paused.walker_px));
+  EXPECT_EQ(MergeScene::sorted(paused.clusters[1].pixels), MergeScene::sorted(paused.rest_px));
+}
+
 TEST(SettledSplit, NegativeCoordinatesSplitTheSame) {
   MergeScene s(2, 0.5, -5.f);  // both at y < 0 (the shape's grid cells are negative)
   std::vector<int> to_track = {1};

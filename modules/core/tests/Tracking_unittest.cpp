@@ -269,6 +269,42 @@ TEST(TrackManager, AStoppedOrPlainlyRefutedTrackIsReleasedAtOnce) {
   EXPECT_FALSE(t.dynamic);
 }
 
+TEST(TrackManager, AMoverThatClearlyStoppedIsAtRestAtOnce) {
+  // A walker who pauses is at rest (Track::atRest: its last points are its own for the split)
+  // from its clear stop, not only once settled; a refuted one (a false mover) is not.
+  for (const bool on : {true, false}) {
+    TrackingParams p;
+    p.stop_at_rest = on;
+    TrackManager tm(p, 5);
+    MovementDecision yes, stopped, refuted;
+    yes.enough_history = yes.candidate = true;
+    stopped.enough_history = stopped.candidate = stopped.stopped = true;
+    refuted = yes;
+    refuted.refuted = true;
+    Track walker;
+    tm.decide(walker, yes);
+    tm.decide(walker, yes);
+    ASSERT_TRUE(walker.dynamic);
+    EXPECT_FALSE(walker.atRest());
+    tm.decide(walker, stopped);
+    EXPECT_FALSE(walker.dynamic);
+    EXPECT_FALSE(walker.settled);
+    EXPECT_EQ(walker.atRest(), on) << "stop_at_rest = " << on;
+    tm.decide(walker, yes);  // one moving verdict: still released, still at rest
+    EXPECT_EQ(walker.atRest(), on);
+    tm.decide(walker, yes);  // walks on: dynamic, not at rest
+    EXPECT_TRUE(walker.dynamic);
+    EXPECT_FALSE(walker.atRest());
+    EXPECT_FALSE(walker.halted);
+    Track tree;
+    tm.decide(tree, yes);
+    tm.decide(tree, yes);
+    tm.decide(tree, refuted);
+    EXPECT_FALSE(tree.dynamic);
+    EXPECT_FALSE(tree.atRest());
+  }
+}
+
 TEST(TrackManager, AnEarlyStaticVerdictIsNoVerdict) {
   TrackingParams p;
   p.settled_frames = 1;
@@ -355,6 +391,48 @@ TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
   EXPECT_FALSE(MovementAnalyzer(paper).analyse(w, chain, car, 0.1).long_object);
   paper.long_object_ego_ratio = 0;
   EXPECT_TRUE(MovementAnalyzer(paper).analyse(w, chain, car, 0.1).long_object);
+}
+
+TEST(MovementAnalyzer, ACarPassingCloseByMovesAsItsEndsNotAsItsCentroid) {
+  // A 4 m car passing the sensor: its points are densest abreast of the sensor, so its centroid
+  // moves half as far as its ends (0.6 m against 1.2 m in the window's first frame). Both ends
+  // moved alike: a rigid mover (rigid_ends_length), where the centroid alone calls it a wall.
+  const FrameChain chain = walkingChain(5);  // the robot walks +0.1 m/frame along X
+  Cluster car;
+  car.main_direction = Eigen::Vector2d(1, 0);
+  car.elongation = 3;
+  car.length = 4;
+  const auto passing = [](double half_length) {
+    Window w;
+    for (long i = 0; i < 5; i++) {
+      const double end = 0.2 * static_cast<double>(i);
+      w.emplace_back(i, V3(2 + 0.05 * static_cast<double>(i), 3, 0),
+                     V3(2 - half_length + end, 3, 0), V3(2 + half_length + end, 3, 0));
+    }
+    return w;
+  };
+  const auto d = MovementAnalyzer().analyse(passing(2.0), chain, car, 0.1);
+  EXPECT_NEAR(d.displacement, 0.6, 1e-9);
+  EXPECT_TRUE(d.rigid);
+  EXPECT_FALSE(d.long_object);
+  EXPECT_TRUE(d.moving());
+  MovementParams off;
+  off.rigid_ends_length = 0;  // as before Session 28: the lagging centroid makes it a wall
+  const auto d_off = MovementAnalyzer(off).analyse(passing(2.0), chain, car, 0.1);
+  EXPECT_FALSE(d_off.rigid);
+  EXPECT_TRUE(d_off.long_object);
+  // An object at rest is no car passing: a walker who merges with it shifts its ends.
+  EXPECT_FALSE(MovementAnalyzer().analyse(passing(2.0), chain, car, 0.1, true).rigid);
+  // A cluster shorter than rigid_ends_length (2 m): its ends are noise, the centroid decides.
+  EXPECT_FALSE(MovementAnalyzer().analyse(passing(0.9), chain, car, 0.1).rigid);
+  // Ends that moved unlike each other (one fixed, as a wall's real end) are not rigid however
+  // far the other went.
+  Window wall;
+  for (long i = 0; i < 5; i++)
+    wall.emplace_back(i, V3(2 + 0.05 * static_cast<double>(i), 3, 0),
+                      V3(-0.1 * static_cast<double>(i), 3, 0),
+                      V3(4 + 0.4 * static_cast<double>(i), 3, 0));
+  EXPECT_FALSE(MovementAnalyzer().analyse(wall, chain, car, 0.1).rigid);
 }
 
 TEST(MovementAnalyzer, Eq23NeedsTheViewpointToHaveMovedAsFarAsTheObject) {

@@ -46,6 +46,12 @@ struct MovementParams : public StageParams {
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never
+  /// [m] ... or, for a cluster at least this long in both, whose two ends moved alike (within
+  /// rigid_tolerance of their mean) and farther than its centroid: a car passing the sensor,
+  /// whose densest points stay abreast of the sensor while its ends move with it (a short
+  /// cluster's ends are noise). Beyond the paper; 0 = off, as before Session 28
+  /// (docs/algorithm.md §7).
+  double rigid_ends_length = 2.0;
   /// Eq. (23) rejects a long object only when its displacement f is at most this many times the
   /// sensor's own travel over the window: a static wall's visible part slides only because the
   /// viewpoint moves, by about as far (more where a near occluder frames it), while a car driving
@@ -103,17 +109,20 @@ class MovementAnalyzer {
   explicit MovementAnalyzer(const MovementParams& p = {});
 
   /// `window`: the track's observations, oldest first (the last k are used); `cluster`: its
-  /// current cluster (same frame as the last entry); `dt`: seconds between frames.
+  /// current cluster (same frame as the last entry); `dt`: seconds between frames; `at_rest`: the
+  /// track is at rest (Track::atRest), and its ends alone do not make it rigid (rigid_ends_length:
+  /// a walker who merges with a resting object shifts its ends).
   MovementDecision analyse(const Window& window, const FrameChain& chain, const Cluster& cluster,
-                           double dt) const;
+                           double dt, bool at_rest = false) const;
 
   const MovementParams& params() const { return p_; }
 
  private:
   /// Both ends of `b` (the last entry) moved from those of `a` (the first) by the centroid's
-  /// displacement along v; T_ab maps b's frame into a's.
+  /// displacement along v, or (`by_ends`, rigid_ends_length) both by their mean, farther than the
+  /// centroid; T_ab maps b's frame into a's.
   bool rigidMotion(const WindowEntry& a, const WindowEntry& b, const Eigen::Isometry3d& T_ab,
-                   const Eigen::Vector3d& v, double displacement) const;
+                   const Eigen::Vector3d& v, double displacement, bool by_ends) const;
 
   MovementParams p_;
 };

@@ -33,8 +33,9 @@ struct RegionGrowingParams : public StageParams {
   double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
                             ///< centre, or than half the seeds' own extent plus this, if larger
   int max_pixels = 20000;   ///< safety limit per object
-  /// a mover's region does not take the points of an object whose track was judged static
-  /// settled_frames ([tracking]) times in a row: a walker passing someone who stands
+  /// a mover's region does not take the points of an object whose track is at rest (judged
+  /// static settled_frames ([tracking]) times in a row, or clearly stopped, stop_at_rest): a
+  /// walker passing someone who stands
   bool keep_out_settled = true;
   /// [m] ... nor a point nearer to such an object's feature points than to the mover's own seeds,
   /// both within this distance: the body of one who stands beside a walker, of which the feature

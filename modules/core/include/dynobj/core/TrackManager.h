@@ -26,6 +26,9 @@ struct TrackingParams : public StageParams {
   int settled_confirm_frames = 2;  ///< ... and needs this many moving decisions instead (trees,
                                    ///< poles and parked cars flicker; a real start keeps moving).
                                    ///< Default = confirm_frames: off (docs/algorithm.md §7c)
+  bool stop_at_rest = true;  ///< a mover released by a clear stop ([movement] stop_window) is at
+                             ///< rest at once, not only once settled (a walker who pauses beside
+                             ///< a passer; false = as before Session 28)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -43,13 +46,15 @@ struct Track {
   bool dynamic = false;
   int positives = 0, negatives = 0;
   bool settled = false;  ///< judged static settled_frames times in a row since it last moved
+  bool halted = false;   ///< released by a clear stop (stop_at_rest) and not moving since
   MovementDecision decision;
   /// Settled at rest: the points of its last cluster, in the sensor frame of sweep shape_frame
   /// (SettledSplit.h); empty otherwise.
   std::vector<Eigen::Vector3f> shape;
   long shape_frame = -1;
 
-  bool atRest() const { return settled && !dynamic; }
+  /// Settled, or a mover that clearly stopped: its last points are its own (SettledSplit.h).
+  bool atRest() const { return (settled || halted) && !dynamic; }
   Eigen::Vector3d position() const { return {state(0), state(1), z}; }
   Eigen::Vector2d velocity() const { return state.tail<2>(); }
 };
