@@ -48,7 +48,7 @@ struct Track {
   bool settled = false;  ///< judged static settled_frames times in a row since it last moved
   bool halted = false;   ///< released by a clear stop (stop_at_rest) and not moving since
   MovementDecision decision;
-  /// Settled at rest: the points of its last cluster, in the sensor frame of sweep shape_frame
+  /// At rest (atRest): the points of its last cluster, in the sensor frame of sweep shape_frame
   /// (SettledSplit.h); empty otherwise.
   std::vector<Eigen::Vector3f> shape;
   long shape_frame = -1;
