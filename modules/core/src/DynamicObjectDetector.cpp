@@ -337,8 +337,8 @@ RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
     RegionGrower::Admit then) const {
   const double radius = grower_.params().nearer_rest_radius;
   if (radius <= 0 || !grower_.params().keep_out_settled) return then;
-  // Per seed set, the feature points of the objects settled at rest whose cluster's box comes
-  // within `radius` of the seeds' box.
+  // Per seed set, the feature points of the objects at rest (Track::atRest) whose cluster's box
+  // comes within `radius` of the seeds' box.
   std::vector<std::vector<int>> beside(seeds.size());
   for (std::size_t s = 0; s < seeds.size(); s++) {
     if (seeds[s].empty()) continue;
@@ -391,7 +391,7 @@ void DynamicObjectDetector::collectObjects(const LidarFrame& frame, const std::v
     o.box_max = c.max;
     o.points = static_cast<int>(c.pixels.size());
     o.dynamic = tr.dynamic;
-    o.settled = tr.atRest();
+    o.at_rest = tr.atRest();
     o.age = tr.age;
     o.cluster = c.pixels;
     const auto it = std::find(seed_track_.begin(), seed_track_.end(), tr.id);

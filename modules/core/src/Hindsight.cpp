@@ -115,7 +115,7 @@ void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, in
   RegionGrower::keepOut(r.seen_static, owner_);  // past_surface_check refused them
   if (!grower_.params().keep_out_settled) return;
   for (const TrackedObject& s : r.objects)
-    if (s.settled && !s.dynamic && s.id != except_id) RegionGrower::keepOut(s.cluster, owner_);
+    if (s.at_rest && !s.dynamic && s.id != except_id) RegionGrower::keepOut(s.cluster, owner_);
 }
 
 bool Hindsight::movingAt(const std::vector<Held>& held, std::size_t j, const TrackedObject& then,

@@ -68,14 +68,14 @@ bool MovementAnalyzer::rigidMotion(const WindowEntry& a, const WindowEntry& b,
     return std::abs((b0 - a0) - travel) <= tol && std::abs((b1 - a1) - travel) <= tol;
   };
   if (movedBy(displacement)) return true;
+  const double length = p_.rigid_ends_length;
+  if (!by_ends || length <= 0) return false;
   // Beyond the paper (rigid_ends_length): a car passing close by shows its densest points abreast
   // of the sensor, so its centroid lags its ends (`parking` OS0-64 seed 6: ends 1.34 and 1.37 m,
   // centroid 0.54 m), while a wall sliding into view has one end fixed. A short cluster's ends
   // are noise, and an object at rest is no car passing (a walker merging with it shifts its ends).
   const double ends = 0.5 * ((b0 - a0) + (b1 - a1));
-  const double length = p_.rigid_ends_length;
-  return by_ends && length > 0 && a1 - a0 >= length && b1 - b0 >= length && ends > displacement &&
-         movedBy(ends);
+  return a1 - a0 >= length && b1 - b0 >= length && ends > displacement && movedBy(ends);
 }
 
 MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChain& chain,
