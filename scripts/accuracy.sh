@@ -120,6 +120,8 @@ ABLATIONS=(
   "a mover's region takes the body of one at rest beside it, all but its features (\`[region_growing] nearer_rest_radius = 0\`) — before Session 27|[region_growing]\nnearer_rest_radius = 0\n"
   "a long cluster is a rigid mover only when its ends moved with its centroid (\`[movement] rigid_ends_length = 0\`) — before Session 28|[movement]\nrigid_ends_length = 0\n"
   "a mover that clearly stopped is at rest only once settled, 10 sweeps later (\`[tracking] stop_at_rest = false\`) — before Session 28|[tracking]\nstop_at_rest = false\n"
+  "hindsight fills no sweep where a dynamic track was not seen between two sightings (\`[hindsight] fill_gaps = false\`) — before Session 29|[hindsight]\nfill_gaps = false\n"
+  "hindsight fills no sweep before a trusted track was first seen (\`[hindsight] fill_before = false\`) — before Session 29|[hindsight]\nfill_before = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

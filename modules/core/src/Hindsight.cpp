@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "dynobj/core/Config.h"
 #include "dynobj/core/DynamicObjectDetector.h"
@@ -30,6 +31,28 @@ constexpr std::size_t kRestSteps = 2;  ///< ... on each of this many steps befor
 
 /// [m] way_along: a track that went less far than this has no direction to measure along.
 constexpr double kMinWent = 0.01;
+
+/// fill_gaps / fill_before: fewer points than this about where an unseen object was are noise.
+constexpr std::size_t kMinFill = 2;
+
+/// fill_gaps / fill_before: does `v` see a surface (not its ground) within the free-space
+/// tolerance of `p` (a point carried in by v.T), at its pixel or one beside it in its row or
+/// column? Wider than FreeSpaceCheck::sawSurfaceIn: a fill is refused what may stand there.
+bool surfaceNear(const SphericalProjection& proj, const FreeSpaceParams& free_space,
+                 const FreeSpaceCheck::PastView& v, const cv::Vec3f& p) {
+  const Eigen::Vector3d q = v.T * Eigen::Vector3d(p[0], p[1], p[2]);
+  int r = -1, c = -1;
+  if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c)) return false;
+  const double range = q.norm(), tolerance = free_space.tolerance(range);
+  const cv::Mat_<float>& seen = *v.ranges;
+  for (const auto& [dr, dc] : {std::pair{0, 0}, {0, -1}, {0, 1}, {-1, 0}, {1, 0}}) {
+    const int rr = r + dr, cc = (c + dc + seen.cols) % seen.cols;
+    if (rr < 0 || rr >= seen.rows || seen(rr, cc) <= 0 || (v.ground && (*v.ground)(rr, cc)))
+      continue;
+    if (std::abs(seen(rr, cc) - range) <= tolerance) return true;
+  }
+  return false;
+}
 
 /// Horizontal extent of an object's box [m].
 double extent(const TrackedObject& o) {
@@ -58,6 +81,8 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("later_surface_check", later_surface_check);
   v.value("later_surface_points", later_surface_points);
   v.value("way_along", way_along);
+  v.value("fill_gaps", fill_gaps);
+  v.value("fill_before", fill_before);
 }
 
 void HindsightParams::validate() const {
@@ -88,8 +113,7 @@ RegionGrower::Admit Hindsight::laterSurfaceTest(const std::vector<Held>& held, s
   if (!p_.later_surface_points && (here - path_.front().second).head<2>().norm() <= extent(then))
     return {};
   const LidarFrame& newest = *held[k].frame;
-  if (!proj_ || proj_->sensor().rows != newest.rows() || proj_->sensor().cols != newest.cols())
-    proj_.emplace(newest.sensor);
+  projectionFor(newest);
   const cv::Mat_<std::uint8_t>& ground = held[k].result->ground;
   const Eigen::Isometry3d T_kj = T_jk.inverse();
   const FreeSpaceCheck::PastView later{
@@ -107,6 +131,193 @@ RegionGrower::Admit Hindsight::laterSurfaceTest(const std::vector<Held>& held, s
     const bool where_now = (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
     return where_now || !FreeSpaceCheck::sawSurfaceIn(*proj_, free_space_, later, p);
   };
+}
+
+const SphericalProjection& Hindsight::projectionFor(const LidarFrame& f) {
+  if (!proj_ || proj_->sensor().rows != f.rows() || proj_->sensor().cols != f.cols())
+    proj_.emplace(f.sensor);
+  return *proj_;
+}
+
+int Hindsight::fillUnseen(const std::vector<Held>& held, std::size_t j, const TrackedObject& o,
+                          const Eigen::Vector3d& at, const Eigen::Isometry3d& T_jk,
+                          bool need_proof) {
+  const LidarFrame& f = *held[j].frame;
+  DetectionResult& r = *held[j].result;
+  const Eigen::Vector3d c = T_jk * at;  // where it was, in frame j's coordinates
+  const double reach = 0.5 * extent(o) + grower_.params().distance;
+  const double rho = c.head<2>().norm();
+  if (rho <= reach) return 0;
+  const double half_height = 0.5 * (o.box_max.z() - o.box_min.z()) + grower_.params().distance;
+  keepOutSettled(r, f, o.id);
+  const bool ground = r.ground.size() == f.range.size();
+  // The columns within its reach (Eq. 1), every row: the non-ground points near where it was.
+  const int cols = f.cols();
+  const int half =
+      std::min((cols - 1) / 2,
+               static_cast<int>(std::ceil(std::asin(reach / rho) / (2.0 * M_PI) * cols)) + 1);
+  const int c0 = projectionFor(f).columnOf(c.x(), c.y());
+  std::vector<int> seeds;
+  for (int row = 0; row < f.rows(); row++)
+    for (int dc = -half; dc <= half; dc++) {
+      const int col = (c0 + dc + cols) % cols;
+      if (!f.isValid(row, col) || (ground && r.ground(row, col)) || r.dynamic(row, col) ||
+          owner_(row, col) != RegionGrower::kFree)
+        continue;
+      const cv::Vec3f& p = f.xyz(row, col);
+      if (std::hypot(p[0] - c.x(), p[1] - c.y()) <= reach && std::abs(p[2] - c.z()) <= half_height)
+        seeds.push_back(row * cols + col);
+    }
+  // Not what the newest held frame still sees there (later_surface_check, point by point).
+  const RegionGrower::Admit later = laterSurfaceTest(held, j, o, o, at, T_jk);
+  if (later)
+    seeds.erase(
+        std::remove_if(seeds.begin(), seeds.end(), [&later](int px) { return !later(0, px); }),
+        seeds.end());
+  if (seeds.size() < kMinFill) return 0;
+  // Where it was must have been left free: the nearest held frames by which it was farther than
+  // its extent away must not see a surface at half of its points (one before its first sighting
+  // must even see through half of them), nor at any point it takes.
+  const std::vector<FreeSpaceCheck::PastView> judges =
+      judgesOf(held, j, o.velocity.norm(), extent(o) + grower_.params().distance);
+  const Gone gone = verdict(f, judges, seeds);
+  if (judges.empty() || gone == Gone::kRefuted || (need_proof && gone != Gone::kProved)) return 0;
+  const RegionGrower::Admit admit = [this, &f, &judges, &later](std::size_t i, int px) {
+    for (const FreeSpaceCheck::PastView& v : judges)
+      if (surfaceNear(*proj_, free_space_, v, f.pointAt(px))) return false;
+    return !later || later(i, px);
+  };
+  seeds.erase(
+      std::remove_if(seeds.begin(), seeds.end(), [&admit](int px) { return !admit(0, px); }),
+      seeds.end());
+  if (seeds.size() < kMinFill) return 0;
+  TrackedObject t;
+  t.id = o.id;
+  t.dynamic = true;
+  t.filled = true;
+  t.age = std::max(0, o.age - static_cast<int>(held.size() - 1 - j));
+  t.velocity = (T_jk.linear() * Eigen::Vector3d(o.velocity.x(), o.velocity.y(), 0)).head<2>();
+  t.box_min.setConstant(std::numeric_limits<double>::infinity());
+  t.box_max.setConstant(-std::numeric_limits<double>::infinity());
+  for (int px : seeds) {
+    const cv::Vec3f& p = f.pointAt(px);
+    const Eigen::Vector3d q(p[0], p[1], p[2]);
+    t.centroid += q / static_cast<double>(seeds.size());
+    t.box_min = t.box_min.cwiseMin(q);
+    t.box_max = t.box_max.cwiseMax(q);
+  }
+  // No wider than the object, but for the growth's step: a fill holds no one beside it.
+  if (extent(t) > extent(o) + grower_.params().distance) return 0;
+  Cluster probe;  // porous (foliage, seen into and through) is not a mover either (§7b)
+  probe.pixels = seeds;
+  if (free_space_.min_solid_ratio > 0 &&
+      solidRatio(f, probe, free_space_) < free_space_.min_solid_ratio)
+    return 0;
+  t.points = grower_.grow(f, r.ground, {seeds}, r.dynamic, owner_, admit)[0];
+  for (int px : seeds) r.seeds(px / cols, px % cols) = 255;
+  t.cluster = std::move(seeds);
+  r.objects.push_back(std::move(t));
+  return r.objects.back().points;
+}
+
+std::vector<FreeSpaceCheck::PastView> Hindsight::judgesOf(const std::vector<Held>& held,
+                                                          std::size_t j, double speed,
+                                                          double clearance) const {
+  std::vector<FreeSpaceCheck::PastView> views;
+  // The nearest held frame on each side by which the object had moved `clearance` away.
+  for (const int side : {+1, -1}) {
+    Eigen::Isometry3d T_ji = Eigen::Isometry3d::Identity();  // frame i's coordinates into j's
+    std::size_t i = j;
+    while (side > 0 ? i + 1 < held.size() : i > 0) {
+      if (side > 0) {
+        T_ji = T_ji * held[++i].result->ego_motion.motion;
+      } else {
+        T_ji = T_ji * held[i].result->ego_motion.motion.inverse();
+        --i;
+      }
+      const std::size_t a = std::min(i, j), b = std::max(i, j);
+      if (speed * secondsBetween(held[a], held[b], b - a) <= clearance) continue;
+      const cv::Mat_<std::uint8_t>& ground = held[i].result->ground;
+      views.push_back({&held[i].frame->range,
+                       ground.size() == held[i].frame->range.size() ? &ground : nullptr,
+                       T_ji.inverse()});
+      break;
+    }
+  }
+  return views;
+}
+
+Hindsight::Gone Hindsight::verdict(const LidarFrame& f,
+                                   const std::vector<FreeSpaceCheck::PastView>& views,
+                                   const std::vector<int>& pixels) {
+  const SphericalProjection& proj = projectionFor(f);  // one sensor: every held frame's
+  bool proved = false;
+  for (const FreeSpaceCheck::PastView& v : views) {
+    std::size_t surface = 0, through = 0;
+    for (int px : pixels) {
+      const cv::Vec3f& p = f.pointAt(px);
+      const Eigen::Vector3d q = v.T * Eigen::Vector3d(p[0], p[1], p[2]);
+      int r = -1, c = -1;
+      if (!proj.pixelOf(q.x(), q.y(), q.z(), r, c) || (*v.ranges)(r, c) <= 0) continue;
+      const double seen = (*v.ranges)(r, c), tolerance = 0.5 * free_space_.tolerance(q.norm());
+      if (seen > q.norm() + tolerance)
+        through++;
+      else if (seen >= q.norm() - tolerance && !(v.ground && (*v.ground)(r, c)))
+        surface++;
+    }
+    if (2 * surface >= pixels.size()) return Gone::kRefuted;  // something stands there
+    proved = proved || 2 * through >= pixels.size();
+  }
+  return proved ? Gone::kProved : Gone::kUnknown;
+}
+
+std::optional<Eigen::Vector3d> Hindsight::backAt(const std::vector<Held>& held, std::size_t j,
+                                                 const TrackedObject& o) const {
+  // From its earliest place met going back, at its speed out of there over speed_window (to the
+  // newest sweep when none is that far on; the track's own when it was seen only now).
+  const auto& [jb, pb] = path_.back();
+  Eigen::Vector2d v = o.velocity;
+  if (path_.size() > 1) {
+    std::size_t to = 0;
+    for (std::size_t i = path_.size() - 1; i-- > 0;)
+      if (secondsBetween(held[jb], held[path_[i].first], path_[i].first - jb) >=
+          p_.speed_window - 1e-9) {
+        to = i;
+        break;
+      }
+    const std::size_t j2 = path_[to].first;
+    v = (path_[to].second - pb).head<2>() / secondsBetween(held[jb], held[j2], j2 - jb);
+  }
+  if (v.norm() < p_.min_speed) return std::nullopt;  // not moving then
+  const double dt = secondsBetween(held[j], held[jb], jb - j);
+  return Eigen::Vector3d(pb.x() - v.x() * dt, pb.y() - v.y() * dt, pb.z());
+}
+
+long Hindsight::fillGap(const std::vector<Held>& held, const TrackedObject& o) {
+  const std::size_t k = held.size() - 1;
+  Eigen::Isometry3d T_jk = Eigen::Isometry3d::Identity();
+  std::vector<std::pair<std::size_t, Eigen::Isometry3d>> unseen;  // newest first
+  for (std::size_t j = k; j-- > 0;) {
+    T_jk = held[j + 1].result->ego_motion.motion * T_jk;
+    const TrackedObject* seen = findTrack(held[j].result->objects, o.id);
+    if (!seen) {
+      unseen.emplace_back(j, T_jk);
+      continue;
+    }
+    if (unseen.empty() || !seen->dynamic) return 0;
+    // Between the two sightings, in the newest frame's coordinates: it moved, it did not jump.
+    const Eigen::Vector3d from = T_jk.inverse() * seen->centroid;
+    const double span = secondsBetween(held[j], held[k], k - j);
+    if ((o.centroid - from).head<2>().norm() < p_.min_speed * span) return 0;
+    long added = 0;
+    for (const auto& [ju, T_uk] : unseen)
+      added +=
+          fillUnseen(held, ju, o,
+                     from + secondsBetween(held[j], held[ju], ju - j) / span * (o.centroid - from),
+                     T_uk, false);
+    return added;
+  }
+  return 0;
 }
 
 void Hindsight::keepOutSettled(const DetectionResult& r, const LidarFrame& f, int except_id) {
@@ -174,13 +385,30 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
     int run = 1;  // sweeps the track has been seen dynamic in, up to this one
     bool revising = false;
     double out_speed = 0;  // start_check: the fastest speed out met going back
+    bool lost = false;     // fill_before found nothing in a sweep since the last sighting
     path_.clear();         // where the track was seen, in frame k's coordinates, newest first
     path_.emplace_back(k, o.centroid);
     for (std::size_t j = k; j-- > 0;) {
       T_jk = held[j + 1].result->ego_motion.motion * T_jk;
       DetectionResult& r = *held[j].result;
       TrackedObject* earlier = findTrack(r.objects, o.id);
-      if (!earlier) continue;  // not seen then (coasting)
+      if (earlier && earlier->filled) continue;  // between two sightings (fill_gaps)
+      if (!earlier) {  // not seen then (coasting, or before its first sighting)
+        // fill_before: past the start of the run just trusted, the object at its speed then.
+        if (!p_.fill_before || lost || !(revising || run == trusted || (last && run < trusted)))
+          continue;
+        const std::optional<Eigen::Vector3d> at = backAt(held, j, o);
+        const int grown = at ? fillUnseen(held, j, o, *at, T_jk, true) : 0;
+        if (grown == 0) {
+          lost = true;  // until the track is seen again going back
+          continue;
+        }
+        revising = true;
+        added += grown;
+        path_.emplace_back(j, T_jk.inverse() * r.objects.back().centroid);
+        continue;
+      }
+      lost = false;
       const Eigen::Vector3d here = T_jk.inverse() * earlier->centroid;
       if (earlier->dynamic) {
         path_.emplace_back(j, here);
@@ -228,6 +456,7 @@ long Hindsight::revise(const std::vector<Held>& held, bool last) {
       added += grown;
       path_.emplace_back(j, here);
     }
+    if (p_.fill_gaps) added += fillGap(held, o);
   }
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

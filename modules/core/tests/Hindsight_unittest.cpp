@@ -36,17 +36,20 @@ std::vector<int> postPixels(const LidarFrame& f, double x, double y, double radi
 /// A sequence of frames 0.1 s apart seeing one post (sensor frame positions `at`), each with the
 /// result the detector would give: the post tracked as kTrack, its cluster = the post's upper
 /// pixels only (features), its box the post's, dynamic (all its pixels flagged) in the last
-/// `dynamic` frames; `motion`: each frame's T_{prev<-cur}; `standing`: posts in every frame.
+/// `dynamic` frames; `motion`: each frame's T_{prev<-cur}; `standing`: posts in every frame;
+/// `room_radius`: the wall around the sensor [m] (beyond max_range: no wall, nothing behind).
 struct Sequence {
   std::vector<LidarFrame> frames;
   std::vector<DetectionResult> results;
   std::vector<std::vector<int>> post;  ///< every post pixel per frame
 
   Sequence(const std::vector<Eigen::Vector2d>& at, const Eigen::Isometry3d& motion,
-           std::size_t dynamic = 3, const std::vector<Post>& standing = {}) {
+           std::size_t dynamic = 3, const std::vector<Post>& standing = {},
+           double room_radius = Scene().room_radius) {
     const SensorModel s = dynobj::test::smallSensor();
     for (std::size_t j = 0; j < at.size(); j++) {
       Scene scene;
+      scene.room_radius = room_radius;
       scene.posts.push_back({at[j].x(), at[j].y(), 0.3, 1.8});
       scene.posts.insert(scene.posts.end(), standing.begin(), standing.end());
       frames.push_back(dynobj::test::render(scene, s, true, 1000000000LL + 100000000LL * j));
@@ -84,6 +87,13 @@ struct Sequence {
     std::vector<Hindsight::Held> h;
     for (std::size_t j = 0; j < frames.size(); j++) h.push_back({&frames[j], &results[j]});
     return h;
+  }
+  /// Frames [from, to) as if the track had not been seen there (its features fell short).
+  void unseen(std::size_t from, std::size_t to) {
+    for (std::size_t j = from; j < to; j++) {
+      results[j].objects.clear();
+      results[j].dynamic.setTo(0);
+    }
   }
   /// The frame's flagged pixels, as indices.
   std::vector<int> flagged(std::size_t j) const {
@@ -526,4 +536,99 @@ TEST(Hindsight, SettleDistanceIsValidated) {
   HindsightParams q;
   q.rest_speed = -1;
   EXPECT_THROW(q.validate(), ParameterError);
+}
+
+/// Frames at 3 m/s across the sensor's view (0.3 m per 0.1 s), `n` of them.
+std::vector<Eigen::Vector2d> running(int n) {
+  std::vector<Eigen::Vector2d> at;
+  for (int j = 0; j < n; j++) at.emplace_back(4, -0.3 * (n - 1 - j));
+  return at;
+}
+
+TEST(Hindsight, FillsTheSweepsBeforeATrackWasFirstSeenWhereItsPlaceWasSeenLeftFree) {
+  // A runner whose track was first seen in frame 4 (fewer features before), dynamic in 7-9:
+  // frames 4-6 are revised, and frames 0-3 take its points about where it was, back from frame
+  // 4 at its speed. Frame 3's place is seen free by frame 7 (1.2 m on: farther than its extent),
+  // the wall behind it, and so on back.
+  Sequence seq(running(10), forward(0));
+  seq.unseen(0, 4);
+  Hindsight().revise(seq.held());
+  for (std::size_t j = 0; j < 7; j++) {
+    EXPECT_EQ(seq.flagged(j), seq.post[j]) << "frame " << j;
+    ASSERT_EQ(seq.results[j].objects.size(), 1u) << "frame " << j;
+    const TrackedObject& o = seq.results[j].objects[0];
+    EXPECT_EQ(o.id, kTrack);
+    EXPECT_TRUE(o.dynamic);
+    EXPECT_EQ(o.filled, j < 4) << "frame " << j;
+    EXPECT_NEAR(o.centroid.y(), -0.3 * (9 - static_cast<double>(j)), 0.15) << "frame " << j;
+  }
+  // Off: frames 0-3 stay as they were.
+  HindsightParams off;
+  off.fill_before = false;
+  Sequence before(running(10), forward(0));
+  before.unseen(0, 4);
+  Hindsight(off).revise(before.held());
+  for (std::size_t j = 0; j < 4; j++) {
+    EXPECT_TRUE(before.flagged(j).empty()) << "frame " << j;
+    EXPECT_TRUE(before.results[j].objects.empty()) << "frame " << j;
+  }
+  for (std::size_t j = 4; j < 7; j++) EXPECT_EQ(before.flagged(j), before.post[j]) << "frame " << j;
+}
+
+TEST(Hindsight, FillsNothingBeforeAFirstSightingWhosePlaceNoFrameSawFree) {
+  // The same runner with no wall behind it: no later frame sees through where it was (no
+  // return), so nothing proves that what stood there left: frames 0-3 are not filled.
+  Sequence seq(running(10), forward(0), 3, {}, 60);
+  seq.unseen(0, 4);
+  Hindsight().revise(seq.held());
+  for (std::size_t j = 0; j < 4; j++) EXPECT_TRUE(seq.flagged(j).empty()) << "frame " << j;
+  EXPECT_EQ(seq.flagged(4), seq.post[4]);  // its sightings are revised as before
+}
+
+TEST(Hindsight, FillsTheSweepsWhereADynamicTrackWasNotSeenBetweenTwoSightings) {
+  // Dynamic from frame 2 on, not seen in frames 5 and 6, seen again (dynamic) in frame 7, the
+  // newest held: frames 5 and 6 take its points between the two sightings.
+  for (const bool fill : {true, false}) {
+    Sequence seq(running(8), forward(0), 6);
+    seq.unseen(5, 7);
+    HindsightParams p;
+    p.fill_gaps = fill;
+    Hindsight(p).revise(seq.held());
+    for (std::size_t j = 5; j < 7; j++) {
+      EXPECT_EQ(seq.flagged(j), fill ? seq.post[j] : std::vector<int>{}) << "frame " << j;
+      EXPECT_EQ(seq.results[j].objects.size(), fill ? 1u : 0u) << "frame " << j;
+    }
+  }
+  // Not when the sighting before the gap was not dynamic (nothing to fill between), nor when the
+  // two sightings are closer than min_speed allows over the gap (a jump, not a motion).
+  Sequence still(running(8), forward(0), 1);
+  still.unseen(5, 7);
+  Hindsight().revise(still.held());
+  for (std::size_t j = 5; j < 7; j++) EXPECT_TRUE(still.flagged(j).empty()) << "frame " << j;
+  std::vector<Eigen::Vector2d> at = running(8);
+  at[7] = at[4] + Eigen::Vector2d(0, 0.1);  // 0.1 m in 0.3 s: 0.33 m/s < min_speed
+  Sequence slow(at, forward(0), 6);
+  slow.unseen(5, 7);
+  Hindsight().revise(slow.held());
+  for (std::size_t j = 5; j < 7; j++) EXPECT_TRUE(slow.flagged(j).empty()) << "frame " << j;
+}
+
+TEST(Hindsight, FillsNoGapWhereAnEarlierFrameSawSomethingStandThatIsNotTheObject) {
+  // The runner is not there in frames 5 and 6 (it went behind the sensor: not seen), and a thin
+  // post beside its way stands within reach of where it would have been. The newest frame no
+  // longer sees the post (taken away), so only the earlier frames tell: frame 1, by which the
+  // runner was 1.2 m away, saw the post where frame 5 sees it.
+  std::vector<Eigen::Vector2d> at = running(8);
+  at[5] = at[6] = Eigen::Vector2d(-4, 0);
+  const Post post{4.5, -0.45, 0.1, 1.5};
+  Sequence seq(at, forward(0), 6, {post});
+  const Sequence gone(at, forward(0), 6);
+  seq.frames[7] = gone.frames[7];
+  seq.results[7] = gone.results[7];
+  seq.unseen(5, 7);
+  Hindsight().revise(seq.held());
+  for (std::size_t j = 5; j < 7; j++) {
+    EXPECT_TRUE(seq.flagged(j).empty()) << "frame " << j;
+    EXPECT_TRUE(seq.results[j].objects.empty()) << "frame " << j;
+  }
 }

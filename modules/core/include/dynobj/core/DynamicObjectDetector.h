@@ -88,8 +88,10 @@ struct TrackedObject {
   Eigen::Vector3d box_min{0, 0, 0}, box_max{0, 0, 0};
   int points = 0;  ///< pixels of the object this frame (grown when dynamic)
   bool dynamic = false;
-  bool at_rest = false;      ///< its track is at rest (Track::atRest): settled or clearly stopped
-  int age = 0;               ///< frames since first seen
+  bool at_rest = false;  ///< its track is at rest (Track::atRest): settled or clearly stopped
+  int age = 0;           ///< frames since first seen
+  bool filled =
+      false;  ///< added by hindsight where its track was not seen (fill_gaps, fill_before)
   std::vector<int> cluster;  ///< its cluster's pixels this frame (row * cols + col)
 };
 

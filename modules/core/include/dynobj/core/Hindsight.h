@@ -65,6 +65,14 @@ struct HindsightParams : public StageParams {
   /// there to the newest sweep: a parked car's centroid drifts sideways as the sensor drives past
   /// and its visible faces turn, before it pulls out (false = the whole way, as before Session 26)
   bool way_along = true;
+  /// a sweep inside a track's dynamic run where its track was not seen (coasting: its features
+  /// fell short) takes the object's points about where it was, between the sightings before and
+  /// after, at least min_speed apart (false = as before Session 29)
+  bool fill_gaps = true;
+  /// ... and so do the sweeps before a trusted track was first seen, back from its earliest
+  /// sighting at its speed, while each finds the object there (a far walker of a few points a
+  /// sweep, found only as it nears; false = as before Session 29)
+  bool fill_before = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
                                ///< is unflagged before its frame is written; 0 = off
@@ -125,6 +133,34 @@ class Hindsight {
   bool movingAt(const std::vector<Held>& held, std::size_t j, const TrackedObject& then,
                 const Eigen::Vector3d& here, const Eigen::Isometry3d& T_jk,
                 double& out_speed) const;
+  /// fill_gaps / fill_before: flags in held frame j, where the track of `o` (the newest frame's
+  /// object) was not seen, the points about `at` (the newest frame's coordinates; T_jk as in
+  /// movingAt): the non-ground pixels within the object's reach of it, grown as its cluster would
+  /// be, and adds the object there. Returns the pixels added; 0 (and no change) when too few
+  /// points lie there, or they spread wider than the object (a merge).
+  int fillUnseen(const std::vector<Held>& held, std::size_t j, const TrackedObject& o,
+                 const Eigen::Vector3d& at, const Eigen::Isometry3d& T_jk, bool need_proof);
+  /// fill_gaps for the newest frame's dynamic object `o`: when its track was last seen dynamic
+  /// before one or more sweeps where it was not, those sweeps are filled between the two.
+  long fillGap(const std::vector<Held>& held, const TrackedObject& o);
+  /// fill_gaps / fill_before: the views that judge held frame j's points (T: frame j into the
+  /// view's frame): the nearest held frame on either side by which an object moving at `speed`
+  /// [m/s] was `clearance` [m] away from there.
+  std::vector<FreeSpaceCheck::PastView> judgesOf(const std::vector<Held>& held, std::size_t j,
+                                                 double speed, double clearance) const;
+  /// Did those views see the place of `pixels` (`f`'s) left free? Refuted when one sees a surface
+  /// at half of them or more (a bench beside a cyclist's path); proved when one sees through
+  /// half of them or more and none refutes.
+  enum class Gone { kRefuted, kUnknown, kProved };
+  Gone verdict(const LidarFrame& f, const std::vector<FreeSpaceCheck::PastView>& views,
+               const std::vector<int>& pixels);
+  /// fill_before: where the track of `o` was at held frame j (the newest frame's coordinates),
+  /// back from its earliest place met going back (path_) at its speed out of there; none when
+  /// slower than min_speed.
+  std::optional<Eigen::Vector3d> backAt(const std::vector<Held>& held, std::size_t j,
+                                        const TrackedObject& o) const;
+  /// The projection of Eq. (1) for `f`'s sensor.
+  const SphericalProjection& projectionFor(const LidarFrame& f);
   /// stop_check for the object `o` of the first held frame, path_ holding where its track was seen
   /// from then on (frames 0, ...; positions in frame 0's coordinates).
   bool stoppedAt(const std::vector<Held>& held, const TrackedObject& o) const;
