@@ -7,8 +7,10 @@
 // Eq. 24-25), walking back while the object, seen from each earlier frame, covered the way to
 // where it was `speed_window` later at least `min_speed` fast and its cluster was not much larger
 // than the object (a walker merged with a bench) and it was not standing there (start_check),
-// never over what the newest held frame still sees there (later_surface_check);
-// before a frame is written, an object that stood there (stop_check) or whose track then got
+// never over what the newest held frame still sees there (later_surface_check); sweeps where
+// its track was not seen take the object's points about where it was, between two sightings
+// (fill_gaps) or before its first (fill_before), where nearby held frames saw that place left
+// free; before a frame is written, an object that stood there (stop_check) or whose track then got
 // nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
 // See docs/algorithm.md §9.
 #pragma once
@@ -67,11 +69,13 @@ struct HindsightParams : public StageParams {
   bool way_along = true;
   /// a sweep inside a track's dynamic run where its track was not seen (coasting: its features
   /// fell short) takes the object's points about where it was, between the sightings before and
-  /// after, at least min_speed apart (false = as before Session 29)
+  /// after, at least min_speed apart, where the nearest held frames by which it had left do not
+  /// see a surface there (false = as before Session 29)
   bool fill_gaps = true;
   /// ... and so do the sweeps before a trusted track was first seen, back from its earliest
-  /// sighting at its speed, while each finds the object there (a far walker of a few points a
-  /// sweep, found only as it nears; false = as before Session 29)
+  /// sighting at its speed, while each finds the object there and one of those frames sees
+  /// through its place (a far walker of a few points a sweep, found only as it nears; false = as
+  /// before Session 29)
   bool fill_before = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is
@@ -136,8 +140,10 @@ class Hindsight {
   /// fill_gaps / fill_before: flags in held frame j, where the track of `o` (the newest frame's
   /// object) was not seen, the points about `at` (the newest frame's coordinates; T_jk as in
   /// movingAt): the non-ground pixels within the object's reach of it, grown as its cluster would
-  /// be, and adds the object there. Returns the pixels added; 0 (and no change) when too few
-  /// points lie there, or they spread wider than the object (a merge).
+  /// be, and adds the object there (`filled`). Returns the pixels added; 0 (and no change) when
+  /// fewer than 2 points lie there, no held frame can judge the place (judgesOf), one refutes it
+  /// or, with `need_proof`, none proves it (verdict), or they spread wider than the object + the
+  /// growth's step, or are porous. Points a judge sees on a surface are neither seeds nor grown.
   int fillUnseen(const std::vector<Held>& held, std::size_t j, const TrackedObject& o,
                  const Eigen::Vector3d& at, const Eigen::Isometry3d& T_jk, bool need_proof);
   /// fill_gaps for the newest frame's dynamic object `o`: when its track was last seen dynamic
