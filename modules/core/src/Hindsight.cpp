@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "dynobj/core/Config.h"
 #include "dynobj/core/DynamicObjectDetector.h"
@@ -182,40 +181,39 @@ int Hindsight::fillUnseen(const std::vector<Held>& held, std::size_t j, const Tr
       judgesOf(held, j, o.velocity.norm(), extent(o) + grower_.params().distance);
   const Gone gone = verdict(f, judges, seeds);
   if (judges.empty() || gone == Gone::kRefuted || (need_proof && gone != Gone::kProved)) return 0;
-  const RegionGrower::Admit admit = [this, &f, &judges, &later](std::size_t i, int px) {
+  const auto judged_free = [this, &f, &judges](int px) {
     for (const FreeSpaceCheck::PastView& v : judges)
       if (surfaceNear(*proj_, free_space_, v, f.pointAt(px))) return false;
-    return !later || later(i, px);
+    return true;
   };
-  seeds.erase(
-      std::remove_if(seeds.begin(), seeds.end(), [&admit](int px) { return !admit(0, px); }),
-      seeds.end());
+  seeds.erase(std::remove_if(seeds.begin(), seeds.end(),
+                             [&judged_free](int px) { return !judged_free(px); }),
+              seeds.end());
   if (seeds.size() < kMinFill) return 0;
+  Cluster fill;
+  fill.pixels = std::move(seeds);
+  computeClusterShape(f, fill);
+  // No wider than the object, but for the growth's step: a fill holds no one beside it.
+  if ((fill.max - fill.min).head<2>().norm() > extent(o) + grower_.params().distance) return 0;
+  // Porous (foliage, seen into and through) is not a mover either (§7b).
+  if (free_space_.min_solid_ratio > 0 &&
+      solidRatio(f, fill, free_space_) < free_space_.min_solid_ratio)
+    return 0;
   TrackedObject t;
   t.id = o.id;
   t.dynamic = true;
   t.filled = true;
   t.age = std::max(0, o.age - static_cast<int>(held.size() - 1 - j));
   t.velocity = (T_jk.linear() * Eigen::Vector3d(o.velocity.x(), o.velocity.y(), 0)).head<2>();
-  t.box_min.setConstant(std::numeric_limits<double>::infinity());
-  t.box_max.setConstant(-std::numeric_limits<double>::infinity());
-  for (int px : seeds) {
-    const cv::Vec3f& p = f.pointAt(px);
-    const Eigen::Vector3d q(p[0], p[1], p[2]);
-    t.centroid += q / static_cast<double>(seeds.size());
-    t.box_min = t.box_min.cwiseMin(q);
-    t.box_max = t.box_max.cwiseMax(q);
-  }
-  // No wider than the object, but for the growth's step: a fill holds no one beside it.
-  if (extent(t) > extent(o) + grower_.params().distance) return 0;
-  Cluster probe;  // porous (foliage, seen into and through) is not a mover either (§7b)
-  probe.pixels = seeds;
-  if (free_space_.min_solid_ratio > 0 &&
-      solidRatio(f, probe, free_space_) < free_space_.min_solid_ratio)
-    return 0;
-  t.points = grower_.grow(f, r.ground, {seeds}, r.dynamic, owner_, admit)[0];
-  for (int px : seeds) r.seeds(px / cols, px % cols) = 255;
-  t.cluster = std::move(seeds);
+  t.centroid = fill.centroid;
+  t.box_min = fill.min;
+  t.box_max = fill.max;
+  const RegionGrower::Admit admit = [&judged_free, &later](std::size_t i, int px) {
+    return judged_free(px) && (!later || later(i, px));
+  };
+  t.points = grower_.grow(f, r.ground, {fill.pixels}, r.dynamic, owner_, admit)[0];
+  for (int px : fill.pixels) r.seeds(px / cols, px % cols) = 255;
+  t.cluster = std::move(fill.pixels);
   r.objects.push_back(std::move(t));
   return r.objects.back().points;
 }
