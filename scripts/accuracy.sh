@@ -122,6 +122,7 @@ ABLATIONS=(
   "a mover that clearly stopped is at rest only once settled, 10 sweeps later (\`[tracking] stop_at_rest = false\`) — before Session 28|[tracking]\nstop_at_rest = false\n"
   "hindsight fills no sweep where a dynamic track was not seen between two sightings (\`[hindsight] fill_gaps = false\`) — before Session 29|[hindsight]\nfill_gaps = false\n"
   "hindsight fills no sweep before a trusted track was first seen (\`[hindsight] fill_before = false\`) — before Session 29|[hindsight]\nfill_before = false\n"
+  "a mover's cluster that is not split keeps the fair part of one at rest in it, flagged (\`[association] split_hold_back = false\`) — before Session 30|[association]\nsplit_hold_back = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini

@@ -17,6 +17,7 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("split_min_share", split_min_share);
   v.value("split_match_radius", split_match_radius);
   v.value("split_rest_majority", split_rest_majority);
+  v.value("split_hold_back", split_hold_back);
 }
 
 void AssociationParams::validate() const {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/core/DynamicObjectDetector.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
@@ -108,7 +109,8 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
              params.clustering.min_points,
              params.association.split_min_share,
              params.association.split_match_radius,
-             params.association.split_rest_majority},
+             params.association.split_rest_majority,
+             params.association.split_hold_back},
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
                    params.free_space.history() + 2))),
@@ -209,8 +211,10 @@ const DetectionResult& DynamicObjectDetector::process(
   std::vector<int> cluster_to_track =
       associator_.associate(centroidsOf(clusters_), predicted, gates);
   // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
+  held_.clear();
   const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
-                                              predicted, clusters_, cluster_to_track);
+                                              predicted, clusters_, cluster_to_track, &held_);
+  std::sort(held_.begin(), held_.end());
   findWeakSeeds(predicted, cluster_to_track);
   tracks_.update(frame_index_, clusters_, cluster_to_track);
   r.timings.association = clock.lap();
@@ -287,9 +291,11 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     free_space_.review(frame, frame_index_, c, chain_, dt, d, result_.ground);  // beyond the paper
     tracks_.decide(tr, d);                                                      // with hysteresis
     if (!tr.dynamic) continue;
-    seeds.push_back(c.pixels);
+    seeds.emplace_back();
+    for (int px : c.pixels)  // but a resting object's points held back from it (SettledSplit.h)
+      if (!std::binary_search(held_.begin(), held_.end(), px)) seeds.back().push_back(px);
     seed_track_.push_back(tr.id);
-    for (int px : c.pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
+    for (int px : seeds.back()) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
   // Beyond the paper (§5): a dynamic track coasting through this sweep seeds from its weak
   // cluster, if it found one (no observation: its state and decisions stay as they were).
@@ -305,6 +311,7 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     for (const Track& tr : tracks_.tracks())
       if (tr.cluster >= 0 && tr.atRest())
         RegionGrower::keepOut(clusters_[static_cast<std::size_t>(tr.cluster)].pixels, owner_);
+  if (grower_.params().keep_out_settled) RegionGrower::keepOut(held_, owner_);
   return seeds;
 }
 

@@ -40,7 +40,8 @@ std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& fra
                               long frame_index, const FrameChain& chain,
                               const std::vector<Track>& tracks,
                               const std::vector<Eigen::Vector3d>& predicted,
-                              std::vector<Cluster>& clusters, std::vector<int>& cluster_to_track) {
+                              std::vector<Cluster>& clusters, std::vector<int>& cluster_to_track,
+                              std::vector<int>* held) {
   std::vector<int> resting;  // ids of the resting tracks whose cluster is their part of a merge
   if (p.radius <= 0) return resting;
   std::vector<char> matched(tracks.size(), 0);
@@ -91,12 +92,18 @@ std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& fra
       if (off > p.radius || static_cast<double>(at_rest.pixels.size()) < sliver ||
           (static_cast<double>(mover.pixels.size()) < sliver && off > p.match_radius)) {
         // No split. A cluster that is mostly the resting object is not the mover's to flag: the
-        // resting track takes it, the mover coasts (else nothing changes).
-        if (!p.rest_majority || !unseen.atRest() ||
-            2 * at_rest.pixels.size() < clusters[m].pixels.size())
-          continue;
-        toResting();
-        break;
+        // resting track takes it, the mover coasts (else the association stands).
+        const bool majority = p.rest_majority && unseen.atRest() &&
+                              2 * at_rest.pixels.size() >= clusters[m].pixels.size();
+        if (majority) {
+          toResting();
+          break;
+        }
+        // A mover's cluster stays its own; the resting object's fair part in it is not its to flag.
+        if (held && p.hold_back && owner.dynamic &&
+            static_cast<double>(at_rest.pixels.size()) >= sliver)
+          held->insert(held->end(), at_rest.pixels.begin(), at_rest.pixels.end());
+        continue;
       }
       Cluster& kept = clusters[m];
       kept.pixels = std::move(owner.atRest() ? at_rest.pixels : mover.pixels);

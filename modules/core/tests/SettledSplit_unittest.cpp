@@ -68,13 +68,14 @@ struct MergeScene {
   void split(std::vector<int>& cluster_to_track, double radius = 0.2,
              double min_share = SettledSplitParams{}.min_share,
              double match_radius = SettledSplitParams{}.match_radius,
-             bool rest_majority = SettledSplitParams{}.rest_majority) {
+             bool rest_majority = SettledSplitParams{}.rest_majority,
+             std::vector<int>* held = nullptr) {
     SettledSplitParams p;
     p.radius = radius;
     p.min_share = min_share;
     p.match_radius = match_radius;
     p.rest_majority = rest_majority;
-    splitSettled(p, frame, 1, chain, tracks, predicted, clusters, cluster_to_track);
+    splitSettled(p, frame, 1, chain, tracks, predicted, clusters, cluster_to_track, held);
   }
 
   static std::vector<int> sorted(std::vector<int> v) {
@@ -274,6 +275,43 @@ TEST(SettledSplit, TheMoversPartMustLieWhereTheMoverWasExpected) {
   t.split(b);
   EXPECT_EQ(t.clusters.size(), 1u);
   EXPECT_EQ(b, (std::vector<int>{0}));
+}
+
+TEST(SettledSplit, AMoversClusterHoldsBackTheRestingObjectsFairPart) {
+  // The walker's part lies off its prediction (its own far side came into view) and the standing
+  // one holds less than half of the cluster: the walker's track keeps it whole, but the standing
+  // one's 16 points are held back (not its to flag). Every other outcome holds nothing back.
+  const double d = SettledSplitParams{}.min_share, m = SettledSplitParams{}.match_radius;
+  MergeScene wide(3);
+  wide.predicted[1] = {3.0, 1.25, 0.0};
+  std::vector<int> a = {1}, held;
+  wide.split(a, 0.2, d, m, true, &held);
+  EXPECT_EQ(a, (std::vector<int>{1}));
+  ASSERT_EQ(wide.clusters.size(), 1u);
+  EXPECT_EQ(MergeScene::sorted(held), MergeScene::sorted(wide.rest_px));
+
+  MergeScene split;  // split: each track has its part, nothing held back
+  std::vector<int> b = {1}, none;
+  split.split(b, 0.2, d, m, true, &none);
+  EXPECT_EQ(split.clusters.size(), 2u);
+  EXPECT_TRUE(none.empty());
+  MergeScene majority;  // half of it the standing one's: the cluster is its own
+  majority.predicted[1] = {3.0, 1.15, 0.0};
+  std::vector<int> c = {1};
+  majority.split(c, 0.2, d, m, true, &none);
+  EXPECT_EQ(c, (std::vector<int>{0}));
+  EXPECT_TRUE(none.empty());
+  MergeScene resting_took_it = wide;  // the standing one's track took it: the walker coasts
+  std::vector<int> e = {0};
+  resting_took_it.split(e, 0.2, d, m, true, &none);
+  EXPECT_EQ(e, (std::vector<int>{0}));
+  EXPECT_TRUE(none.empty());
+  MergeScene small(7);  // a resting sliver (16 of 72) in the mover's cluster: a car's end over
+  small.predicted[1] = {3.0, 1.25, 0.0};  // a small thing it hid keeps its points
+  std::vector<int> f = {1};
+  small.split(f, 0.2, d, m, true, &none);
+  EXPECT_EQ(f, (std::vector<int>{1}));
+  EXPECT_TRUE(none.empty());
 }
 
 TEST(SettledSplit, AResterGivenItsPartKeepsItsShape) {

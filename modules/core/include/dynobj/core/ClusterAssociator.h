@@ -36,6 +36,10 @@ struct AssociationParams : public StageParams {
   /// takes it whole if its part holds at least half of the points (the mover coasts; false = the
   /// mover keeps it, and with it the resting object, as before Session 27)
   bool split_rest_majority = true;
+  /// when no split is made and the mover's track keeps the cluster, the resting object's part in
+  /// it (a share of at least split_min_share) is held back: neither seeds nor grown into
+  /// (false = flagged with the mover, as before Session 30)
+  bool split_hold_back = true;
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

@@ -182,6 +182,7 @@ class DynamicObjectDetector {
   cv::Mat_<std::uint8_t> exclude_, prev_dynamic_;
   cv::Mat_<int> owner_;
   std::vector<int> seed_track_;
+  std::vector<int> held_;  ///< sorted pixels of resting objects in a mover's cluster (splitSettled)
   long frame_index_ = -1;
   std::int64_t last_stamp_ = 0;
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();

@@ -25,6 +25,8 @@ struct SettledSplitParams {
                                 ///< lies this near the mover's prediction
   bool rest_majority = true;    ///< no split, the mover's cluster mostly the resting object's:
                                 ///< the resting track takes it whole
+  bool hold_back = true;        ///< no split, the mover keeps its cluster: the resting object's
+                                ///< fair part in it is held back (`held`)
 };
 
 /// For each track at rest (Track::atRest) or dynamic that `cluster_to_track` left without a
@@ -39,13 +41,18 @@ struct SettledSplitParams {
 ///   part;
 /// - else, when the resting track found no cluster and its part holds half of the points or
 ///   more (`rest_majority`), the whole cluster goes to the resting track (the mover coasts).
+/// - else, when the cluster stays with the mover's track although the resting object holds a
+///   fair part of it (`min_share`: the mover's part only lay off its prediction), that part is
+///   appended to `held` (when given and `hold_back`): the mover's track keeps the whole cluster,
+///   but those points are the resting object's, neither seeds nor grown into.
 /// New parts are appended to `clusters` and `cluster_to_track`. Returns the ids of the resting
 /// tracks given a part (they keep their shape: rememberShapes' `keep`).
 std::vector<int> splitSettled(const SettledSplitParams& p, const LidarFrame& frame,
                               long frame_index, const FrameChain& chain,
                               const std::vector<Track>& tracks,
                               const std::vector<Eigen::Vector3d>& predicted,
-                              std::vector<Cluster>& clusters, std::vector<int>& cluster_to_track);
+                              std::vector<Cluster>& clusters, std::vector<int>& cluster_to_track,
+                              std::vector<int>* held = nullptr);
 
 /// Stores on each seen track at rest the points of its cluster in sweep `frame_index` (its
 /// shape for splitSettled), except on the tracks whose id is in `keep`; clears the shape of every
