@@ -307,11 +307,12 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
     seed_track_.push_back(id);
     for (int px : weak_[m].pixels) result_.seeds(px / frame.cols(), px % frame.cols()) = 255;
   }
-  if (grower_.params().keep_out_settled)  // beyond the paper: a mover beside one at rest (as §9)
+  if (grower_.params().keep_out_settled) {  // beyond the paper: a mover beside one at rest (§9)
     for (const Track& tr : tracks_.tracks())
       if (tr.cluster >= 0 && tr.atRest())
         RegionGrower::keepOut(clusters_[static_cast<std::size_t>(tr.cluster)].pixels, owner_);
-  if (grower_.params().keep_out_settled) RegionGrower::keepOut(held_, owner_);
+    RegionGrower::keepOut(held_, owner_);  // and its part held back from a mover's cluster
+  }
   return seeds;
 }
 
