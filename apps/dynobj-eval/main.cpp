@@ -4,11 +4,17 @@
 //   --run <scenario.yaml | sequence dir | file.rawlog>: simulate if needed, run the detector and
 //         the baselines, evaluate, report.
 //   --gt <file.labels> --pred <file.labels>: evaluate existing label files.
+//   --run <folder of sweeps | file.rawlog> --truth <human labels>: a real recording, point by
+//         point, online and offline (eval/PointEvaluation.h).
 #include <dynobj/eval/ExperimentRunner.h>
+#include <dynobj/eval/PointEvaluation.h>
 #include <dynobj/eval/ReportFolder.h>
+#include <dynobj/io/AtomicFile.h>
 #include <dynobj/io/LabelFile.h>
+#include <dynobj/mrptio/OpenFrameSource.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include "../common/AppOptions.h"
@@ -28,6 +34,45 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
   std::cout << eval::writeReportFolder(dir, title, command, runs);
   std::cerr << "[dynobj-eval] report: " << dir << "/report.html (and summary.md, summary.json, "
             << "*.sweeps.csv, overlays/)\n";
+}
+
+/// Progress on stderr: a rewritten line on a terminal, a few lines otherwise.
+std::function<void(const std::string&, std::size_t)> progressPrinter(const std::string& name,
+                                                                     std::size_t total,
+                                                                     bool quiet) {
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  return [=](const std::string& mode, std::size_t k) {
+    if (quiet) return;
+    if (tty)
+      std::cerr << "\r[dynobj-eval] " << name << " " << mode << ": sweep " << k << "/" << total
+                << (k == total ? "\n" : "") << std::flush;
+    else if (k % std::max<std::size_t>(1, total / 4) == 0)
+      std::cerr << "[dynobj-eval] " << name << " " << mode << ": sweep " << k << "/" << total
+                << "\n";
+  };
+}
+
+/// --truth: a real recording scored point by point against human labels.
+int runAgainstTruth(const std::string& input, const std::string& truth_path,
+                    const std::string& calib, eval::PointEvalOptions opts,
+                    const apps::SensorArgs& sensor, const std::string& label,
+                    const std::string& out, const std::string& command, bool quiet) {
+  mrptio::OpenedFrameSource in = mrptio::openFrameSource(input, sensor.model(), label);
+  const std::unique_ptr<eval::PointTruthSource> truth = eval::openPointTruth(truth_path, calib);
+  const std::string name = std::filesystem::path(input).filename().string();
+  opts.progress = progressPrinter(name, std::min(in.frames, opts.max_frames), quiet);
+  eval::PointEvaluation e = eval::evaluatePoints(*in.source, *truth, opts);
+  for (auto& r : e.runs) r.sequence = name;
+  std::cerr << "[dynobj-eval] truth: " << truth->describe() << ": " << e.sweeps << " sweeps, "
+            << e.points << " points, " << e.known_points << " scored (" << e.moving_points
+            << " moving), " << e.points - e.known_points << " unknown (left out)\n";
+  writeOutputs(out, "dynobj-eval: " + name, command, e.runs);
+  io::writeFileAtomically(out + "/objects.csv", eval::sightingsCsv(e.sightings));
+  if (!e.tracks.empty()) {
+    io::writeFileAtomically(out + "/truth-tracks.csv", eval::trackMotionCsv(e.tracks));
+    std::cerr << "[dynobj-eval] the tracks' judged motion: " << out << "/truth-tracks.csv\n";
+  }
+  return 0;
 }
 
 int run(int argc, char** argv) {
@@ -71,6 +116,27 @@ int run(int argc, char** argv) {
       "With --gt: sweeps of a person-made label file nobody reviewed (dynobj-label's '# "
       "reviewed' line): refuse (default), skip them, or include them as they are",
       false, "refuse", "refuse|skip|include", cmd);
+  TCLAP::ValueArg<std::string> truth(
+      "", "truth",
+      "Human labels of the --run recording, scored point by point online and offline: KITTI "
+      "tracking label_02 file (with --calib), a box-track .csv, or a folder of SemanticKITTI "
+      ".label files",
+      false, "", "labels", cmd);
+  TCLAP::ValueArg<std::string> calib("", "calib", "KITTI calibration of --truth", false, "",
+                                     "calib.txt", cmd);
+  TCLAP::ValueArg<std::string> truth_poses("", "truth-poses",
+                                           "Sensor poses (TUM or KITTI) to judge the boxes' "
+                                           "motion (default: the detector's ego-motion)",
+                                           false, "", "poses", cmd);
+  TCLAP::ValueArg<std::string> truth_out("", "truth-out",
+                                         "Write the truth as SemanticKITTI labels into this folder",
+                                         false, "", "dir", cmd);
+  TCLAP::ValueArg<std::string> pred_out(
+      "", "predictions-out",
+      "Write each mode's predictions as SemanticKITTI labels (9 static, 251 moving) into "
+      "<dir>/<mode>/",
+      false, "", "dir", cmd);
+  const apps::SensorArgs sensor(cmd, false);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (run_in.isSet() == (gt.isSet() || pred.isSet()) || gt.isSet() != pred.isSet()) {
@@ -80,6 +146,19 @@ int run(int argc, char** argv) {
   apps::ensureDirectory(out.getValue());
   apps::ensureDirectory(out.getValue() + "/overlays");
   const std::string command = commandLine(argc, argv);
+
+  if (truth.isSet()) {
+    eval::PointEvalOptions po;
+    po.params = apps::loadDetectorParams(config.getValue());
+    if (modes.isSet()) po.modes = eval::parsePointModes(modes.getValue());
+    po.min_object_points = min_points.getValue();
+    po.truth_poses = truth_poses.getValue();
+    po.truth_dir = truth_out.getValue();
+    po.predictions_dir = pred_out.getValue();
+    if (frames.getValue() > 0) po.max_frames = static_cast<std::size_t>(frames.getValue());
+    return runAgainstTruth(run_in.getValue(), truth.getValue(), calib.getValue(), po, sensor,
+                           label.getValue(), out.getValue(), command, quiet.isSet());
+  }
 
   if (gt.isSet()) {  // existing files: metrics only (no frames, so no overlays or timings)
     writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command,
@@ -105,20 +184,11 @@ int run(int argc, char** argv) {
           : eval::RunOptions::evenlySpacedSweeps(std::max(0, overlays.getValue()), n_sweeps);
 
   std::vector<eval::RunResult> runs;
-  const bool tty = isatty(STDERR_FILENO) != 0;
+  const auto progress = progressPrinter(seq.name, n_sweeps, quiet.isSet());
   for (const auto& m : mode_list) {
     opts.mode = m;
-    opts.progress = [&](std::size_t k) {
-      if (quiet.isSet()) return;
-      if (tty)
-        std::cerr << "\r[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/"
-                  << n_sweeps << std::flush;
-      else if (k % std::max<std::size_t>(1, n_sweeps / 4) == 0)
-        std::cerr << "[dynobj-eval] " << seq.name << " " << m << ": sweep " << k << "/" << n_sweeps
-                  << "\n";
-    };
+    opts.progress = [&](std::size_t k) { progress(m, k); };
     runs.push_back(eval::runExperiment(seq, opts));
-    if (tty && !quiet.isSet()) std::cerr << "\n";
   }
   writeOutputs(out.getValue(), "dynobj-eval: " + seq.name, command, runs);
   return 0;

@@ -79,14 +79,15 @@ void ObjectRecall::add(const io::LabelSweep& instances, const std::vector<std::u
     n++;
     flagged += std::binary_search(predicted.begin(), predicted.end(), instances.pixels[i]) ? 1 : 0;
   }
-  for (const auto& [id, counts] : seen) {
-    if (counts.first < min_points_) continue;
-    const bool hit =
-        static_cast<double>(counts.second) >= min_flagged_ * static_cast<double>(counts.first);
-    for (ObjectTally* t : {&total_, &by_class_[objects.moving.at(id)]}) {
-      t->present++;
-      t->detected += hit ? 1 : 0;
-    }
+  for (const auto& [id, counts] : seen) count(objects.moving.at(id), counts.first, counts.second);
+}
+
+void ObjectRecall::count(const std::string& cls, std::int64_t points, std::int64_t flagged) {
+  if (points < min_points_) return;
+  const bool hit = static_cast<double>(flagged) >= min_flagged_ * static_cast<double>(points);
+  for (ObjectTally* t : {&total_, &by_class_[cls]}) {
+    t->present++;
+    t->detected += hit ? 1 : 0;
   }
 }
 

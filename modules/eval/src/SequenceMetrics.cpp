@@ -77,6 +77,11 @@ void SequenceMetrics::add(std::int64_t timestamp_ns, const std::vector<std::uint
   sweeps.push_back(s);
 }
 
+void SequenceMetrics::add(std::int64_t timestamp_ns, const Confusion& counts, double ms) {
+  total += counts;
+  sweeps.push_back({timestamp_ns, counts, ms});
+}
+
 std::optional<double> SequenceMetrics::staticFlagged() const {
   if (!static_known || sweeps.empty()) return std::nullopt;
   return total.falsePositiveRate();

@@ -15,11 +15,7 @@
 #include "dynobj/io/PoseFile.h"
 
 namespace dynobj::io {
-namespace {
 
-namespace fs = std::filesystem;
-
-/// a < b with digit runs compared by value ("2" < "10"), then plain order as a tie-break.
 bool naturalLess(const std::string& a, const std::string& b) {
   std::size_t i = 0, j = 0;
   const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
@@ -44,6 +40,10 @@ bool naturalLess(const std::string& a, const std::string& b) {
   if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
   return a < b;
 }
+
+namespace {
+
+namespace fs = std::filesystem;
 
 /// "YYYY-MM-DD HH:MM:SS[.fraction]" (UTC) in ns since 1970, or -1 when `s` is not one.
 std::int64_t parseDateTimeNs(const std::string& s) {

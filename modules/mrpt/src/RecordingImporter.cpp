@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mrptio/RecordingImporter.h"
 
-#include <dynobj/core/RowRecovery.h>
-#include <dynobj/io/CloudFolder.h>
 #include <dynobj/io/FormatError.h>
 #include <dynobj/io/OusterPcapReader.h>
 #include <dynobj/io/PoseFile.h>
@@ -19,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "dynobj/mrptio/CloudFolderFrameSource.h"
 #include "dynobj/mrptio/RangeScanLayout.h"
 #include "dynobj/mrptio/RawlogWriter.h"
 #include "dynobj/mrptio/TimeConversion.h"
@@ -27,16 +26,6 @@ namespace dynobj::mrptio {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Fractional intensities (KITTI remission, 0-1) are stored x 255 (the 8-bit scale of the
-/// sensor they come from); integer-valued ones (Velodyne 0-255, Ouster 8/16-bit) as they are.
-double intensityScale(const core::PointCloud& c) {
-  if (!c.hasIntensity()) return 1.0;
-  float hi = 0;
-  for (float v : c.intensity)
-    if (std::isfinite(v)) hi = std::max(hi, v);
-  return hi <= 1.0f ? 255.0 : 1.0;
-}
 
 class SweepWriter {
  public:
@@ -90,50 +79,17 @@ class SweepWriter {
 
 ImportSummary importFolder(const ImportOptions& o, const std::string& output,
                            const ImportProgress& progress) {
-  io::CloudFolder folder(o.input, o.times);
-  if (o.times.empty()) folder.setPeriodNs(static_cast<std::int64_t>(std::llround(1e9 / o.rate)));
+  CloudFolderFrameSource source(o.input, {o.times, o.rate, o.sensor, o.sensor_label});
   ImportSummary s;
-  s.source = (folder.extension() == ".pcd" ? "PCD folder '" : "KITTI .bin folder '") + o.input +
-             "' (" + std::to_string(folder.size()) + " sweeps)";
-  SweepWriter writer(o, output, folder.size());
-  std::optional<core::SensorModel> hint = o.sensor;
-  core::LidarFrame frame;
-  double scale = 0;
-  for (std::size_t k = 0; k < folder.size(); k++) {
-    io::CloudFile file = folder.read(k);
-    core::PointCloud& cloud = file.cloud;
-    if (!file.viewpoint.isApprox(Eigen::Isometry3d::Identity())) {  // points -> sensor frame
-      const Eigen::Isometry3f to_sensor = file.viewpoint.inverse().cast<float>();
-      for (std::size_t i = 0; i < cloud.size(); i++) {
-        const Eigen::Vector3f p = to_sensor * Eigen::Vector3f(cloud.x[i], cloud.y[i], cloud.z[i]);
-        cloud.x[i] = p.x();
-        cloud.y[i] = p.y();
-        cloud.z[i] = p.z();
-      }
-    }
-    if (scale == 0) {  // decided once, on the first sweep, so every sweep has the same scale
-      scale = intensityScale(cloud);
-      s.intensity = file.intensity_field.empty()
-                        ? "none (the detector uses range)"
-                        : "'" + file.intensity_field + "'" + (scale != 1 ? " x 255" : "");
-    }
-    for (float& v : cloud.intensity) v = static_cast<float>(v * scale);
-    core::RowSource source{};
-    core::ProjectionStats st;
-    try {
-      st = core::projectUnordered(cloud, hint, frame, &source);
-    } catch (const std::invalid_argument& e) {
-      throw io::FormatError(folder.path(k) + ": " + e.what() + "; give --sensor");
-    }
-    if (!hint && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
-      hint = frame.sensor;  // later sweeps keep the first complete sweep's rows
-    if (s.rows_from.empty() || source != core::RowSource::FiringOrder)
-      s.rows_from = core::toString(source);
-    // MRPT reads a zero timestamp as 'invalid': without a times file, sweep k is at (k+1) periods.
-    frame.timestamp_ns = folder.timestampNs(k) + (folder.hasTimes() ? 0 : folder.periodNs());
-    writer.write(frame, st, s);
-    if (progress) progress(k + 1, folder.size());
+  s.source = source.describe();
+  SweepWriter writer(o, output, source.folder().size());
+  Frame f;
+  while (source.next(f)) {
+    writer.write(f.frame, f.stats, s);
+    if (progress) progress(f.index + 1, source.folder().size());
   }
+  s.rows_from = describeRowSources(source.rowSources());
+  s.intensity = source.intensityDescription();
   writer.commit();
   return s;
 }

@@ -42,6 +42,10 @@ class ObjectRecall {
   void add(const io::LabelSweep& instances, const std::vector<std::uint32_t>& predicted,
            const GroundTruthObjects::Sweep& objects);
 
+  /// One object in one sweep, of class `cls`: `points` of its points, `flagged` of them predicted
+  /// moving (counted when points >= min_points).
+  void count(const std::string& cls, std::int64_t points, std::int64_t flagged);
+
   const ObjectTally& total() const { return total_; }
   const std::map<std::string, ObjectTally>& byClass() const { return by_class_; }
   int minPoints() const { return min_points_; }

@@ -43,6 +43,8 @@ struct SequenceMetrics {
   void add(std::int64_t timestamp_ns, const std::vector<std::uint32_t>& truth,
            const std::vector<std::uint32_t>& predicted, std::int64_t valid_points = -1,
            double ms = -1);
+  /// Appends one sweep's counts as they are (tn included: the static points are known).
+  void add(std::int64_t timestamp_ns, const Confusion& counts, double ms = -1);
   /// Share of truly static points flagged dynamic over the sequence (n/a when unknown).
   std::optional<double> staticFlagged() const;
 

@@ -13,6 +13,10 @@
 
 namespace dynobj::io {
 
+/// a < b with digit runs compared by value ("2" < "10"), then plain order as a tie-break: the
+/// order of sweep files named by number.
+bool naturalLess(const std::string& a, const std::string& b);
+
 class CloudFolder {
  public:
   /// Lists the *.pcd or *.bin files of `dir` (one format only) in natural name order (digit runs

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <dynobj/core/LidarFrame.h>
+#include <dynobj/core/PointCloud.h>
 #include <dynobj/core/SphericalProjection.h>
 #include <mrpt/obs/CObservation.h>
 
@@ -26,6 +27,9 @@ struct Frame {
   std::optional<Eigen::Isometry3d> odometry;   ///< robot pose of the latest odometry (rawlog)
   std::optional<Eigen::Isometry3d> viewpoint;  ///< sensor pose given by the input (PCD VIEWPOINT)
   mrpt::obs::CObservation::Ptr observation;    ///< the rawlog's observation (null otherwise)
+  /// The input points in the sensor frame, in the file's order (point-cloud file sources: every
+  /// point of the file, frame.point_pixel maps each to its pixel); empty for other sources.
+  core::PointCloud points;
 };
 
 class FrameSource {
