@@ -32,6 +32,11 @@ int run(int argc, char** argv) {
                                       "file.ini", cmd);
   TCLAP::ValueArg<std::string> section("", "section", "Prefix of the INI sections (e.g. dynobj_)",
                                        false, "", "prefix", cmd);
+  TCLAP::SwitchArg online("", "online",
+                          "Causal, zero latency (the paper): no hindsight lag (default: each "
+                          "sweep is held for [hindsight] lag, 1 s, so that tracks confirmed later "
+                          "flag their earlier sweeps, as dynobj-detect does)",
+                          cmd);
   dynobj::apps::SensorArgs sensor(cmd);
   TCLAP::ValueArg<std::string> labels_out(
       "", "labels-out", "Also write the detections (label file v1)", false, "", "file.labels", cmd);
@@ -70,6 +75,7 @@ int run(int argc, char** argv) {
   o.filter.sensor_label = sensor.label();
   o.filter.sensor = sensor.model();
   o.filter.detector = dynobj::apps::loadDetectorParams(config.getValue(), section.getValue());
+  if (online.isSet()) o.filter.detector.hindsight.lag = 0;
   o.from = from.getValue();
   o.to = to.getValue();
   o.labels_out = labels_out.getValue();
@@ -89,11 +95,13 @@ int run(int argc, char** argv) {
   const auto res = dynobj::mrptio::filterRawlog(in.getValue(), out.getValue(), o);
   if (tty) std::fprintf(stderr, "\n");
   const auto& sm = res.filter;
+  std::string what = dynobj::mrptio::toString(o.filter.mode);  // "drop, offline"; "restore"
+  if (o.filter.mode != dynobj::mrptio::FilterMode::Restore)
+    what += o.filter.detector.hindsight.lag > 0 ? ", offline" : ", online";
   std::printf(
       "rawlog-dynobj: %zu entries, %zu observations; %zu LiDAR frames (%s): %zu points, %zu "
       "dynamic (%.2f%%); %zu passed through; %.2f ms/frame\n",
-      res.entries, sm.observations, sm.lidar, dynobj::mrptio::toString(o.filter.mode), sm.points,
-      sm.dynamic_points,
+      res.entries, sm.observations, sm.lidar, what.c_str(), sm.points, sm.dynamic_points,
       sm.points ? 100.0 * static_cast<double>(sm.dynamic_points) / static_cast<double>(sm.points)
                 : 0.0,
       sm.passed_through, sm.lidar ? sm.detector_ms / static_cast<double>(sm.lidar) : 0.0);

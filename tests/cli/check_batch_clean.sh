@@ -22,7 +22,7 @@ grep -q "3 cleaned, 0 skipped .*, 0 failed" "$W/run1.txt" || { cat "$W/run1.txt"
 for s in seq1 seq2 seq3; do
   [ -f "$W/out/$s.rawlog" ] || fail "no output $s.rawlog"
   [ ! -e "$W/out/$s.rawlog.partial" ] || fail "$s.rawlog.partial left behind"
-  grep -q "^rawlog-dynobj: 20 entries, 20 observations; 10 LiDAR frames (drop)" "$W/out/logs/$s.log" ||
+  grep -q "^rawlog-dynobj: 20 entries, 20 observations; 10 LiDAR frames (drop, offline)" "$W/out/logs/$s.log" ||
     { cat "$W/out/logs/$s.log"; fail "log of $s"; }
   rawlog-edit --info -i "$W/out/$s.rawlog" 2>&1 | grep -q "Overall number of objects *: 20" ||
     fail "stock rawlog-edit does not read 20 objects in $s.rawlog"

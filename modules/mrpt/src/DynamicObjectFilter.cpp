@@ -79,6 +79,14 @@ void DynamicObjectFilter::preconvert(const mobs::CObservation& obs, Preconverted
 const core::DetectionResult* DynamicObjectFilter::filter(
     const mobs::CObservation::Ptr& obs, std::vector<mobs::CObservation::Ptr>* extra,
     PreconvertedFrame* pre) {
+  const core::DetectionResult* r = detect(obs, pre);
+  if (!r) return nullptr;
+  tag(obs, pre ? pre->frame : frame_, *r, extra);
+  return r;
+}
+
+const core::DetectionResult* DynamicObjectFilter::detect(const mobs::CObservation::Ptr& obs,
+                                                         PreconvertedFrame* pre) {
   summary_.observations++;
   if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
   const detail::ObservationClass* cls = detail::findObservationClass(*obs);
@@ -103,14 +111,12 @@ const core::DetectionResult* DynamicObjectFilter::filter(
     warn("mark: " + std::string(cls->name) + " has no per-point label channel; passed through");
     return nullptr;
   }
-  // The per-frame step shared with SequenceRunner: convert -> the sensor's detector -> tags.
-  if (pre) {  // converted ahead, in the same order: take its frame
-    if (!pre->ok) {
-      warn("not processed: " + pre->error);
-      return nullptr;
-    }
-    std::swap(frame_, pre->frame);
-  } else {
+  // The per-frame step shared with SequenceRunner: convert -> the sensor's detector.
+  if (pre && !pre->ok) {  // converted ahead, in the same order
+    warn("not processed: " + pre->error);
+    return nullptr;
+  }
+  if (!pre) {
     try {
       converter_.convert(*obs, frame_);
     } catch (const ConversionError& e) {
@@ -118,9 +124,17 @@ const core::DetectionResult* DynamicObjectFilter::filter(
       return nullptr;
     }
   }
-  const core::DetectionResult& r = detectors_.process(obs->sensorLabel, frame_);
+  const core::DetectionResult& r = detectors_.process(obs->sensorLabel, pre ? pre->frame : frame_);
   summary_.detector_ms += r.timings.total;
-  const std::vector<std::uint8_t> point_mask = frame_.pointMaskFromPixelMask(r.dynamic);
+  return &r;
+}
+
+void DynamicObjectFilter::tag(const mobs::CObservation::Ptr& obs, const core::LidarFrame& frame,
+                              const core::DetectionResult& r,
+                              std::vector<mobs::CObservation::Ptr>* extra) {
+  const detail::ObservationClass* cls = detail::findObservationClass(*obs);
+  const std::string mode = toString(opts_.mode);
+  const std::vector<std::uint8_t> point_mask = frame.pointMaskFromPixelMask(r.dynamic);
   std::size_t n_dynamic = 0;
   for (auto m : point_mask) n_dynamic += m;
 
@@ -130,13 +144,13 @@ const core::DetectionResult* DynamicObjectFilter::filter(
     cls->mark(*obs, r.dynamic);
   } else if (!cls->drop) {
     warn(mode + ": " + cls->name + " cannot drop points; passed through");
-    return &r;
+    return;
   } else {
     try {
       cls->drop(*obs, r.dynamic, point_mask, split ? removed.get() : nullptr);
     } catch (const ConversionError& e) {
       warn(mode + ": " + e.what() + "; passed through");
-      return &r;
+      return;
     }
   }
   summary_.lidar++;
@@ -152,7 +166,6 @@ const core::DetectionResult* DynamicObjectFilter::filter(
     pc->pointcloud = removed;
     extra->push_back(pc);
   }
-  return &r;
 }
 
 void DynamicObjectFilter::filter(mobs::CSensoryFrame& sf) {

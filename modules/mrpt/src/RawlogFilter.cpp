@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 class LabelsOut {
  public:
   explicit LabelsOut(std::string path) : path_(std::move(path)) {}
-  void write(const std::string& sensor, const core::DetectionResult& r) {
+  void write(const std::string& sensor, const core::DetectionResult& r) {  // in time order
     if (!writer_) {
       sensor_ = sensor;
       writer_.emplace(path_, r.dynamic.rows, r.dynamic.cols);
@@ -42,34 +42,22 @@ class LabelsOut {
   std::optional<io::LabelFileWriter> writer_;
 };
 
-/// The single-threaded loop: read, detect, write, one entry after the other.
-RawlogFilterSummary filterSerial(RawlogReader& reader, RawlogWriter& out,
-                                 const RawlogFilterOptions& o, const detail::ResultSink& onResult) {
+/// The single-threaded loop: read, detect, hand on to the writer, one entry after the other.
+FilterSummary detectSerial(RawlogReader& reader, detail::EntryWriter& writer,
+                           const RawlogFilterOptions& o) {
   DynamicObjectFilter filter(o.filter);
-  RawlogEntry e;
-  std::vector<mrpt::obs::CObservation::Ptr> extra;
-  while (reader.next(e)) {
-    if (e.index >= o.from && e.index <= o.to) {  // outside --from/--to: copied unchanged
-      extra.clear();
-      if (e.isPair()) {
-        for (auto& obs : *e.sensory_frame) onResult(*obs, filter.filter(obs, &extra));
-        for (auto& obs : extra) e.sensory_frame->insert(obs);
-        extra.clear();
-      } else {
-        onResult(*e.observation, filter.filter(e.observation, &extra));
-      }
+  for (;;) {
+    auto job = std::make_shared<detail::Job>();
+    if (!reader.next(job->entry)) break;
+    job->filtered = job->entry.index >= o.from && job->entry.index <= o.to;
+    for (auto& obs : job->entry.observations()) {
+      detail::Task& t = job->tasks.emplace_back();
+      t.obs = obs;
+      if (job->filtered) detail::detectTask(filter, t);  // outside --from/--to: copied unchanged
     }
-    if (e.isPair()) {
-      if (e.actions) out.write(*e.actions);
-      out.write(*e.sensory_frame);
-    } else {
-      out.write(*e.observation);
-      for (auto& obs : extra) out.write(*obs);
-      extra.clear();
-    }
-    if (o.progress) o.progress(e.index + 1, filter.summary());
+    writer.add(std::move(job));
   }
-  return {reader.entriesRead(), filter.summary()};
+  return filter.summary();
 }
 
 }  // namespace
@@ -94,21 +82,20 @@ RawlogFilterSummary filterRawlog(const std::string& input, const std::string& ou
   if (!o.labels_out.empty()) labels.emplace(o.labels_out);
   std::optional<io::TracksCsvWriter> tracks;
   if (!o.tracks_out.empty()) tracks.emplace(o.tracks_out);
-  detail::ResultSink onResult;
+  detail::ResultSink on_result;
   if (labels || tracks)
-    onResult = [&](const mrpt::obs::CObservation& obs, const core::DetectionResult* r) {
-      if (!r) return;
-      if (tracks) tracks->write(obs.sensorLabel, *r);
-      if (labels) labels->write(obs.sensorLabel, *r);
+    on_result = [&](const mrpt::obs::CObservation& obs, const core::DetectionResult& r) {
+      if (tracks) tracks->write(obs.sensorLabel, r);
+      if (labels) labels->write(obs.sensorLabel, r);
     };
-  else
-    onResult = [](const mrpt::obs::CObservation&, const core::DetectionResult*) {};
-  const RawlogFilterSummary summary =
-      threads > 1 ? detail::filterPipelined(reader, out, o, threads, onResult, labels || tracks)
-                  : filterSerial(reader, out, o, onResult);
+  detail::EntryWriter writer(o, out, on_result);
+  FilterSummary detected = threads > 1 ? detail::detectPipelined(reader, writer, o, threads)
+                                       : detectSerial(reader, writer, o);
+  writer.finish();
   out.commit();
   if (labels) labels->close();
   if (tracks) tracks->close();
+  const RawlogFilterSummary summary{reader.entriesRead(), detected += writer.tagging()};
   return summary;
 }
 

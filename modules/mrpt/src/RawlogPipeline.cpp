@@ -1,19 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// filterRawlog with threads > 1. Threads and what crosses between them:
+// filterRawlog's shared second half (EntryWriter) and its pipelined first half (threads > 1).
+// Threads of the pipelined loop and what crosses between them:
 //
 //   reader thread      RawlogReader::next() (gzip inflate + MRPT deserialization); splits each
 //                      entry into observation tasks, converts the LiDAR ones into frames
 //                      (DynamicObjectFilter::preconvert, in entry order, as the single-threaded
 //                      loop would), hands them to their label's lane, and queues the entry (a
 //                      Job) for the writer: `jobs_`, bounded.
-//   lane threads       one DynamicObjectFilter each (the label's detector -> tags); a label
-//                      always goes to the same lane, so its frames are detected in order.
-//   calling thread     takes the jobs in entry order, waits until its lanes are done with it,
-//                      hands the results on (labels, tracks, progress) and serializes the entry
-//                      into the RawlogWriter, whose workers compress blocks in parallel.
+//   lane threads       one DynamicObjectFilter each (the label's detector); a label always goes
+//                      to the same lane, so its frames are detected in order.
+//   calling thread     takes the jobs in entry order, waits until its lanes are done with it and
+//                      hands it to the EntryWriter (hindsight, tags, serialization into the
+//                      RawlogWriter, whose workers compress blocks in parallel).
 //
-// Memory: at most `jobs_` capacity + 2 entries are alive at once (the lanes hold only jobs that
-// are also queued), plus RawlogWriter's 2 x threads blocks.
+// Memory: at most `jobs_` capacity + 2 entries between the reader and the writer (the lanes hold
+// only jobs that are also queued), the entries of the hindsight lag in the EntryWriter, plus
+// RawlogWriter's 2 x threads blocks.
 #include "RawlogPipeline.h"
 
 #include <atomic>
@@ -73,51 +75,18 @@ class BoundedQueue {
   std::condition_variable not_full_, not_empty_;
 };
 
-/// One observation of an entry, and what its lane made of it.
-struct Task {
-  mobs::CObservation::Ptr obs;
-  std::unique_ptr<PreconvertedFrame> pre;       ///< converted by the reader thread
-  std::vector<mobs::CObservation::Ptr> extra;   ///< split mode: the removed points
-  std::optional<core::DetectionResult> result;  ///< a copy, when results are wanted
-  FilterSummary delta;                          ///< what this observation added to the summary
-};
-
-/// One rawlog entry on its way through the pipeline.
-struct Job {
-  RawlogEntry entry;
-  bool filtered = false;  ///< inside [from, to]
-  std::vector<Task> tasks;
-  std::atomic<std::size_t> pending{0};  ///< tasks still in a lane
-};
-using JobPtr = std::shared_ptr<Job>;
-
-/// Counts, times (no warnings) that `after` has more than `before`.
-FilterSummary difference(const FilterSummary& after, const FilterSummary& before) {
-  FilterSummary d;
-  d.observations = after.observations - before.observations;
-  d.lidar = after.lidar - before.lidar;
-  d.points = after.points - before.points;
-  d.dynamic_points = after.dynamic_points - before.dynamic_points;
-  d.passed_through = after.passed_through - before.passed_through;
-  d.detector_ms = after.detector_ms - before.detector_ms;
-  return d;
-}
-
 class Pipeline {
  public:
-  Pipeline(RawlogReader& reader, const RawlogFilterOptions& o, unsigned threads, bool keep)
+  Pipeline(RawlogReader& reader, const RawlogFilterOptions& o, unsigned threads)
       : reader_(reader),
         o_(o),
         max_lanes_(threads),
-        keep_results_(keep),
         jobs_(4 + 2 * static_cast<std::size_t>(threads)) {}
 
   ~Pipeline() { stop(); }
 
-  RawlogFilterSummary run(RawlogWriter& out, const ResultSink& on_result) {
+  FilterSummary run(EntryWriter& writer) {
     reader_thread_ = std::thread([this] { guarded([this] { readAll(); }); });
-    FilterSummary running;  // in entry order, for the progress callback
-    std::size_t entries = 0;
     JobPtr job;
     while (jobs_.pop(job)) {
       {
@@ -125,10 +94,7 @@ class Pipeline {
         done_cv_.wait(lk, [&] { return job->pending == 0 || failed_; });
         if (failed_) break;
       }
-      write(*job, out, on_result, running);
-      entries = job->entry.index + 1;
-      if (o_.progress) o_.progress(entries, running);
-      job.reset();  // free the entry before waiting for the next one
+      writer.add(std::move(job));  // an error here: ~Pipeline stops the threads
     }
     stop();
     if (error_) std::rethrow_exception(error_);
@@ -137,7 +103,13 @@ class Pipeline {
     FilterSummary total;
     total.observations = unrouted_observations_;
     for (const auto& lane : lanes_) total += lane->filter.summary();
-    return {reader_.entriesRead(), total};
+    return total;
+  }
+
+  /// Takes back a written frame's buffers, for the reader thread's next conversion.
+  void recycle(std::unique_ptr<PreconvertedFrame> f) {
+    std::lock_guard<std::mutex> lk(spare_m_);
+    spare_frames_.push_back(std::move(f));
   }
 
  private:
@@ -179,7 +151,7 @@ class Pipeline {
       if (!reader_.next(job->entry)) break;
       const RawlogEntry& e = job->entry;
       job->filtered = e.index >= o_.from && e.index <= o_.to;
-      for (auto& obs : e.observations()) job->tasks.push_back(Task{obs, {}, {}, {}, {}});
+      for (auto& obs : e.observations()) job->tasks.emplace_back().obs = obs;
       std::vector<std::pair<Lane*, std::size_t>> routed;
       if (job->filtered) {
         for (std::size_t i = 0; i < job->tasks.size(); i++) {
@@ -235,15 +207,7 @@ class Pipeline {
       Job& job = *item.first;
       Task& t = job.tasks[item.second];
       if (stopping_) continue;  // an error elsewhere: nobody waits for this any more
-      const FilterSummary before = lane.filter.summary();
-      const core::DetectionResult* r = lane.filter.filter(t.obs, &t.extra, t.pre.get());
-      t.delta = difference(lane.filter.summary(), before);
-      if (r && keep_results_) {
-        t.result = *r;
-        t.result->dynamic = r->dynamic.clone();  // the detector reuses its buffers
-        t.result->features.release();
-        t.result->seeds.release();
-      }
+      detectTask(lane.filter, t);
       if (--job.pending == 0) {
         std::lock_guard<std::mutex> lk(done_m_);  // so the writer cannot miss the wake-up
         done_cv_.notify_all();
@@ -252,32 +216,9 @@ class Pipeline {
     }
   }
 
-  /// The calling thread, in entry order: what the single-threaded loop does after filtering.
-  void write(Job& job, RawlogWriter& out, const ResultSink& on_result, FilterSummary& running) {
-    RawlogEntry& e = job.entry;
-    for (auto& t : job.tasks) {
-      running += t.delta;
-      if (job.filtered && keep_results_) on_result(*t.obs, t.result ? &*t.result : nullptr);
-      if (t.pre) {  // its buffers go back to the reader thread
-        std::lock_guard<std::mutex> lk(spare_m_);
-        spare_frames_.push_back(std::move(t.pre));
-      }
-    }
-    if (e.isPair()) {
-      for (auto& t : job.tasks)
-        for (auto& x : t.extra) e.sensory_frame->insert(x);
-      if (e.actions) out.write(*e.actions);
-      out.write(*e.sensory_frame);
-    } else {
-      out.write(*e.observation);
-      for (auto& x : job.tasks.front().extra) out.write(*x);
-    }
-  }
-
   RawlogReader& reader_;
   const RawlogFilterOptions& o_;
   const std::size_t max_lanes_;
-  const bool keep_results_;
   DynamicObjectFilter routing_filter_{o_.filter};  // handles(), converts(), preconvert(): reader
   BoundedQueue<JobPtr> jobs_;
   std::vector<std::unique_ptr<Lane>> lanes_;  // created and looked up by the reader thread
@@ -295,11 +236,95 @@ class Pipeline {
 
 }  // namespace
 
-RawlogFilterSummary filterPipelined(RawlogReader& reader, RawlogWriter& out,
-                                    const RawlogFilterOptions& o, unsigned threads,
-                                    const ResultSink& on_result, bool keep_results) {
-  Pipeline p(reader, o, threads, keep_results);
-  return p.run(out, on_result);
+FilterSummary difference(const FilterSummary& after, const FilterSummary& before) {
+  FilterSummary d;
+  d.observations = after.observations - before.observations;
+  d.lidar = after.lidar - before.lidar;
+  d.points = after.points - before.points;
+  d.dynamic_points = after.dynamic_points - before.dynamic_points;
+  d.passed_through = after.passed_through - before.passed_through;
+  d.detector_ms = after.detector_ms - before.detector_ms;
+  return d;
+}
+
+void detectTask(DynamicObjectFilter& filter, Task& t) {
+  const FilterSummary before = filter.summary();
+  if (!t.pre && t.obs && filter.converts(*t.obs)) {  // not converted ahead: here
+    t.pre = std::make_unique<PreconvertedFrame>();
+    filter.preconvert(*t.obs, *t.pre);
+  }
+  if (const core::DetectionResult* r = filter.detect(t.obs, t.pre.get())) t.detected = r->clone();
+  t.delta += difference(filter.summary(), before);
+}
+
+EntryWriter::EntryWriter(const RawlogFilterOptions& o, RawlogWriter& out, ResultSink on_result)
+    : o_(o),
+      out_(out),
+      on_result_(std::move(on_result)),
+      tagger_(o.filter),
+      held_(
+          o.filter.detector,
+          [](const Ref& r) -> const core::LidarFrame& { return r.job->tasks[r.task].pre->frame; }),
+      release_([this](core::HindsightQueue<Ref>::Item& h) { tag(h); }) {}
+
+void EntryWriter::add(JobPtr job) {
+  pending_.push_back(job);
+  for (std::size_t i = 0; i < job->tasks.size(); i++) {
+    Task& t = job->tasks[i];
+    if (!t.detected) continue;
+    job->held++;
+    core::DetectionResult r = std::move(*t.detected);
+    t.detected.reset();
+    held_.push(t.obs->sensorLabel, Ref{job.get(), i}, std::move(r), release_);
+  }
+  flush();
+}
+
+void EntryWriter::finish() {
+  held_.finish(release_);
+  flush();
+}
+
+void EntryWriter::tag(core::HindsightQueue<Ref>::Item& h) {
+  Task& t = h.data.job->tasks[h.data.task];
+  const FilterSummary before = tagger_.summary();
+  tagger_.tag(t.obs, t.pre->frame, h.result, &t.extra);
+  t.delta += difference(tagger_.summary(), before);
+  if (on_result_) on_result_(*t.obs, h.result);
+  h.data.job->held--;
+}
+
+void EntryWriter::flush() {
+  while (!pending_.empty() && pending_.front()->held == 0) {
+    Job& job = *pending_.front();
+    RawlogEntry& e = job.entry;
+    for (Task& t : job.tasks) {
+      running_ += t.delta;
+      if (t.pre && recycle_) recycle_(std::move(t.pre));
+    }
+    if (e.isPair()) {
+      for (Task& t : job.tasks)
+        for (auto& x : t.extra) e.sensory_frame->insert(x);
+      if (e.actions) out_.write(*e.actions);
+      out_.write(*e.sensory_frame);
+    } else {
+      out_.write(*e.observation);
+      for (Task& t : job.tasks)
+        for (auto& x : t.extra) out_.write(*x);
+    }
+    written_ = e.index + 1;
+    if (o_.progress) o_.progress(written_, running_);
+    pending_.pop_front();  // frees the entry
+  }
+}
+
+FilterSummary detectPipelined(RawlogReader& reader, EntryWriter& writer,
+                              const RawlogFilterOptions& o, unsigned threads) {
+  Pipeline p(reader, o, threads);
+  writer.setRecycle([&p](std::unique_ptr<PreconvertedFrame> f) { p.recycle(std::move(f)); });
+  const FilterSummary s = p.run(writer);
+  writer.setRecycle({});
+  return s;
 }
 
 }  // namespace dynobj::mrptio::detail

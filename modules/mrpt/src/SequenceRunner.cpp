@@ -2,7 +2,6 @@
 #include "dynobj/mrptio/SequenceRunner.h"
 
 #include <algorithm>
-#include <set>
 #include <stdexcept>
 
 namespace dynobj::mrptio {
@@ -16,8 +15,8 @@ SequenceRunner::SequenceRunner(FrameSource& source, SequenceOptions opts)
     : source_(source),
       opts_(std::move(opts)),
       bank_(opts_.detector),
-      hindsight_(opts_.detector.hindsight, opts_.detector.region_growing,
-                 opts_.detector.free_space) {
+      held_(opts_.detector,
+            [](const Held& h) -> const core::LidarFrame& { return h.frame.frame; }) {
   if (!opts_.poses.empty()) poses_ = io::readPoseFile(opts_.poses, io::PoseFormat::Tum);
   if (!opts_.ground_truth.empty()) {
     truth_.emplace(opts_.ground_truth);
@@ -36,6 +35,16 @@ const io::TimedPose* SequenceRunner::poseOf(const Frame& f) const {
 }
 
 std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& on_frame) {
+  // A frame held for the hindsight lag, now final: its callback.
+  const auto release = [&](core::HindsightQueue<Held>::Item& h) {
+    FrameResult r(h.data.frame);
+    r.detection = &h.result;
+    r.pose = h.data.pose;
+    r.motion = h.data.motion;
+    r.truth = h.data.truth;
+    r.truth_index = h.data.truth_index;
+    on_frame(r);
+  };
   Frame f;
   std::size_t n = 0;
   for (; n < opts_.max_frames && source_.next(f); n++) {
@@ -57,68 +66,19 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
       prev = r.pose;
     }
     if (opts_.detect) r.detection = &bank_.process(f.sensor_label, f.frame, r.motion);
-    if (!opts_.detect || opts_.detector.hindsight.lag <= 0) {
+    if (!opts_.detect || !held_.lagged()) {
       on_frame(r);
       continue;
     }
-    hold(std::move(f), r);
+    const std::string label = f.sensor_label;
+    held_.push(label, Held{std::move(f), r.pose, r.motion, r.truth, r.truth_index},
+               r.detection->clone(), release);
     f = Frame{};
-    release(on_frame, false);
   }
-  std::set<std::string> sensors;  // the recording ends: each sensor's last frame revises once more
-  for (const Held& h : held_) sensors.insert(h.frame.sensor_label);
-  for (const std::string& label : sensors) revise(label, true);
-  release(on_frame, true);
+  held_.finish(release);  // the recording ends: each sensor's last frame revises once more
   if (n == 0 && opts_.require_frames)
     throw std::runtime_error("no LiDAR observation in " + source_.describe());
   return n;
-}
-
-void SequenceRunner::hold(Frame&& f, const FrameResult& r) {
-  Held& h = held_.emplace_back();
-  h.detection = r.detection->clone();  // the detector reuses its images
-  h.pose = r.pose;
-  h.motion = r.motion;
-  h.truth = r.truth;
-  h.truth_index = r.truth_index;
-  h.frame = std::move(f);
-  revise(h.frame.sensor_label, false);
-}
-
-std::vector<core::Hindsight::Held> SequenceRunner::heldOf(const std::string& sensor_label) {
-  std::vector<core::Hindsight::Held> same_sensor;
-  for (Held& e : held_)
-    if (e.frame.sensor_label == sensor_label) same_sensor.push_back({&e.frame.frame, &e.detection});
-  return same_sensor;
-}
-
-void SequenceRunner::revise(const std::string& sensor_label, bool last) {
-  hindsight_.revise(heldOf(sensor_label), last);
-}
-
-void SequenceRunner::settle(const std::string& sensor_label) {
-  hindsight_.settle(heldOf(sensor_label));  // settle_distance, stop_check
-}
-
-void SequenceRunner::release(const std::function<void(const FrameResult&)>& on_frame, bool all) {
-  while (!held_.empty()) {
-    const Held& h = held_.front();
-    if (!all) {
-      const auto same = std::count_if(held_.begin(), held_.end(), [&](const Held& e) {
-        return e.frame.sensor_label == h.frame.sensor_label;
-      });
-      if (same <= hindsight_.heldFrames(h.frame.frame.sensor.frequency)) return;
-    }
-    settle(h.frame.sensor_label);
-    FrameResult r(h.frame);
-    r.detection = &h.detection;
-    r.pose = h.pose;
-    r.motion = h.motion;
-    r.truth = h.truth;
-    r.truth_index = h.truth_index;
-    on_frame(r);
-    held_.pop_front();
-  }
 }
 
 }  // namespace dynobj::mrptio

@@ -72,6 +72,16 @@ class DynamicObjectFilter {
   const core::DetectionResult* filter(const mrpt::obs::CObservation::Ptr& obs,
                                       std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr,
                                       PreconvertedFrame* pre = nullptr);
+  /// filter() in two steps, for callers that hold a frame's result before tagging it (the rawlog
+  /// filter's hindsight lag): detect() counts, converts (or takes `pre`'s frame, left there)
+  /// and detects; the result is valid until the next call and nullptr when the observation is
+  /// not processed (counted as filter() would). tag() then tags `obs` with a result (possibly
+  /// revised since) of its `frame` and counts the points.
+  const core::DetectionResult* detect(const mrpt::obs::CObservation::Ptr& obs,
+                                      PreconvertedFrame* pre = nullptr);
+  void tag(const mrpt::obs::CObservation::Ptr& obs, const core::LidarFrame& frame,
+           const core::DetectionResult& result,
+           std::vector<mrpt::obs::CObservation::Ptr>* extra = nullptr);
   /// Whether filter() would convert this observation (a handled LiDAR observation that the mode
   /// does not pass through unconverted). Has no side effect.
   bool converts(const mrpt::obs::CObservation& obs) const;
@@ -86,7 +96,7 @@ class DynamicObjectFilter {
 
   const FilterSummary& summary() const { return summary_; }
   const Options& options() const { return opts_; }
-  /// The frame of the last processed observation (for label output).
+  /// The frame of the last observation converted here (not given converted ahead).
   const core::LidarFrame& lastFrame() const { return frame_; }
 
  private:

@@ -9,10 +9,10 @@
 // (core::Hindsight); the callbacks still come once per frame, in the source's order.
 #pragma once
 
+#include <dynobj/core/HindsightQueue.h>
 #include <dynobj/io/PoseFile.h>
 
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <limits>
 #include <map>
@@ -68,25 +68,14 @@ class SequenceRunner {
 
  private:
   const io::TimedPose* poseOf(const Frame& f) const;
-  /// A frame waiting for its callback, with everything the callback gets.
+  /// What a frame waiting for its callback keeps, beside its detection.
   struct Held {
     Frame frame;
-    core::DetectionResult detection;
     const io::TimedPose* pose = nullptr;
     std::optional<Eigen::Isometry3d> motion;
     const io::LabelSweep* truth = nullptr;
     std::size_t truth_index = 0;
   };
-  /// Holds the frame just detected and lets hindsight revise its sensor's held frames.
-  void hold(Frame&& f, const FrameResult& r);
-  /// core::Hindsight::revise() over this sensor's held frames (`last`: the recording ended).
-  void revise(const std::string& sensor_label, bool last);
-  /// core::Hindsight::settle() on this sensor's oldest held frame, before it is released.
-  void settle(const std::string& sensor_label);
-  /// This sensor's held frames, oldest first.
-  std::vector<core::Hindsight::Held> heldOf(const std::string& sensor_label);
-  /// Calls back the frames held long enough (all of them when `all`), oldest first.
-  void release(const std::function<void(const FrameResult&)>& on_frame, bool all);
 
   FrameSource& source_;
   SequenceOptions opts_;
@@ -95,8 +84,7 @@ class SequenceRunner {
   std::optional<GroundTruth> truth_;
   std::map<std::string, const io::TimedPose*> last_pose_;  ///< per sensor label
   std::string first_label_;
-  core::Hindsight hindsight_;
-  std::deque<Held> held_;
+  core::HindsightQueue<Held> held_;
 };
 
 }  // namespace dynobj::mrptio
