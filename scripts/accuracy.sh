@@ -17,6 +17,12 @@
 #   scripts/accuracy.sh --realdata      "Real HDL-64 streets, no labels": label-free consistency and
 #                                       ICP agreement on ../shared/realdata/kitti-hdl64-city-22 and,
 #                                       when DYNOBJ_DATA2 names it, the 154-sweep data_2 folder
+#   scripts/accuracy.sh --real          "Real recordings, human labels": data_2 (DYNOBJ_DATA2, the
+#                                       154-sweep folder) against KITTI's boxes
+#                                       (../shared/realdata/kitti-tracking-0000), online and offline,
+#                                       per class; then --realdata. Skips clearly without the data.
+#   scripts/accuracy.sh --real-ablations the same data_2 score with each switch of the shipped INI
+#                                       flipped (REAL_ABLATIONS below), online and offline F1
 #   scripts/accuracy.sh --mapclean      the map-cleaning tables (scripts/mapclean-accuracy.sh)
 #   scripts/accuracy.sh --all           every section above
 #   scripts/accuracy.sh --matrix [...]  the full evaluation matrix (scripts/accuracy-matrix.sh --help)
@@ -352,6 +358,108 @@ realdata() {
   log "realdata: ${md} (top views: ${dir}/<recording>.png, KITTI-derived: do not commit them)"
 }
 
+# Real recordings with human labels (../shared/realdata/kitti-tracking-0000: KITTI's 3-D boxes of
+# data_2). A development set: the detector never reads it; dynobj-eval scores its output.
+KITTI_LABELS="$REALDATA_DIR/kitti-tracking-0000"
+# real_ready: 0 when data_2 and its labels are there (else says what is missing).
+real_ready() {
+  if [ -z "${DYNOBJ_DATA2:-}" ] || [ ! -d "${DYNOBJ_DATA2:-}" ]; then
+    log "real: skipped: set DYNOBJ_DATA2 to the 154-sweep data_2 folder (fetch github:udacity/SFND_Lidar_Obstacle_Detection, src/sensors/data/pcd/data_2; ../shared/realdata/README.md)"
+    return 1
+  fi
+  if [ ! -f "$KITTI_LABELS/label_02_0000.txt" ]; then
+    log "real: skipped: no KITTI labels in $KITTI_LABELS"
+    return 1
+  fi
+}
+# real_eval <out dir> [dynobj-eval options]: data_2 against the KITTI boxes, both modes.
+real_eval() {
+  local dir="$1"
+  shift
+  "$BIN/dynobj-eval" --run "$DYNOBJ_DATA2" --truth "$KITTI_LABELS/label_02_0000.txt" \
+    --calib "$KITTI_LABELS/calib.txt" -o "$dir" -q "$@" > /dev/null
+}
+# real_f1 <eval out dir> <mode>: F1 of that mode, 3 decimals.
+real_f1() { jq -r --arg m "$2" '.runs[] | select(.mode == $m) | .f1 * 1000 | round / 1000' "$1/summary.json"; }
+
+real() {
+  local dir="$OUT/real" md="$OUT/real.md"
+  real_ready || return 0
+  mkdir -p "$dir"
+  log "real: data_2 against KITTI's boxes (online and offline)"
+  real_eval "$dir/data_2" -c "$CONFIG"
+  {
+    echo "<!-- made by: scripts/accuracy.sh --real -->"
+    echo "\`dynobj-eval --run data_2 --truth kitti-tracking-0000/label_02_0000.txt --calib kitti-tracking-0000/calib.txt -o <dir>\`"
+    echo "(points in the front camera's view, 0.2 m band around moving boxes left out; summed over all sweeps)"
+    echo
+    echo "| mode | precision | recall | IoU | F1 | object recall | car | van | cyclist | pedestrian | static flagged |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|"
+    jq -r '.runs[] | . as $r | .object_recall as $o |
+      def cls($c): ($o.by_class[$c] // null) | if . == null then "–" else "\(.detected)/\(.present)" end;
+      def f3: . * 1000 | round / 1000 | tostring;
+      "| \($r.mode) | \($r.precision | f3) | \($r.recall | f3) | \($r.iou | f3) | \($r.f1 | f3) | \($o.recall | f3) (\($o.detected)/\($o.present)) | \(cls("Car")) | \(cls("Van")) | \(cls("Cyclist")) | \(cls("Pedestrian")) | \($r.static_flagged * 100000 | round / 1000) % |"' \
+      "$dir/data_2/summary.json"
+  } > "$md.partial"
+  mv "$md.partial" "$md"
+  log "real: ${md} (per object and sweep: ${dir}/data_2/objects.csv; the tracks' motion: truth-tracks.csv)"
+  realdata
+}
+
+# Each switch of the shipped INI flipped, on data_2's human labels: "label|INI text".
+REAL_ABLATIONS=(
+  "defaults|"
+  "[foreground] absolute = false|[foreground]\nabsolute = false\n"
+  "[foreground] exclude_ground = false|[foreground]\nexclude_ground = false\n"
+  "[ego_refinement] enabled = false|[ego_refinement]\nenabled = false\n"
+  "[association] split_rest_majority = false|[association]\nsplit_rest_majority = false\n"
+  "[association] split_hold_back = false|[association]\nsplit_hold_back = false\n"
+  "[movement] planar = false|[movement]\nplanar = false\n"
+  "[free_space] enabled = false|[free_space]\nenabled = false\n"
+  "[free_space] require_proof = false|[free_space]\nrequire_proof = false\n"
+  "[free_space] exclude_own_past = false|[free_space]\nexclude_own_past = false\n"
+  "[tracking] prediction = false|[tracking]\nprediction = false\n"
+  "[tracking] hysteresis = false|[tracking]\nhysteresis = false\n"
+  "[tracking] stop_at_rest = false|[tracking]\nstop_at_rest = false\n"
+  "[region_growing] keep_out_settled = false|[region_growing]\nkeep_out_settled = false\n"
+  "[region_growing] past_surface_check = false|[region_growing]\npast_surface_check = false\n"
+  "[hindsight] start_check = false|[hindsight]\nstart_check = false\n"
+  "[hindsight] stop_check = false|[hindsight]\nstop_check = false\n"
+  "[hindsight] later_surface_check = false|[hindsight]\nlater_surface_check = false\n"
+  "[hindsight] later_surface_points = false|[hindsight]\nlater_surface_points = false\n"
+  "[hindsight] way_along = false|[hindsight]\nway_along = false\n"
+  "[hindsight] fill_gaps = false|[hindsight]\nfill_gaps = false\n"
+  "[hindsight] fill_before = false|[hindsight]\nfill_before = false\n"
+)
+real_ablations() {
+  local dir="$OUT/real-ablations" md="$OUT/real-ablations.md" v label ini base_on base_off on off
+  real_ready || return 0
+  mkdir -p "$dir"
+  {
+    echo "<!-- made by: scripts/accuracy.sh --real-ablations -->"
+    echo "Per variant: \`dynobj-eval --run data_2 --truth <KITTI boxes> --calib <calib> -c <dynobj.ini + the changed key>\`"
+    echo
+    echo "| variant | online F1 | change | offline F1 | change |"
+    echo "|---|---|---|---|---|"
+  } > "$md.partial"
+  local i=0
+  for v in "${REAL_ABLATIONS[@]}"; do
+    label="${v%%|*}"
+    ini="$dir/variant-$i.ini"
+    { cat "$CONFIG"; printf '\n%b' "${v#*|}"; } > "$ini"  # the later key wins
+    log "real ablations: ${label}"
+    real_eval "$dir/variant-$i" -c "$ini"
+    on=$(real_f1 "$dir/variant-$i" online)
+    off=$(real_f1 "$dir/variant-$i" offline)
+    if [ "$i" = 0 ]; then base_on=$on; base_off=$off; fi
+    awk -v l="$label" -v a="$on" -v b="$base_on" -v c="$off" -v d="$base_off" \
+      'BEGIN { printf "| %s | %.3f | %+.3f | %.3f | %+.3f |\n", l, a, a - b, c, c - d }' >> "$md.partial"
+    i=$((i + 1))
+  done
+  mv "$md.partial" "$md"
+  log "real ablations: ${md}"
+}
+
 case "${1:-}" in
   --ablations) ablations ;;
   --seeds) seeds ;;
@@ -360,6 +468,8 @@ case "${1:-}" in
   --held-out) quick_matrix held-out "${HELD_OUT[@]}" ;;
   --ego-error) ego_error ;;
   --realdata) realdata ;;
+  --real) real ;;
+  --real-ablations) real_ablations ;;
   --mapclean) exec "$HERE/mapclean-accuracy.sh" ;;
   --all) table1; ablations; seeds; os0_128; quick_matrix quick-matrix "${QUICK[@]}"; quick_matrix held-out "${HELD_OUT[@]}"; ego_error; realdata; "$HERE/mapclean-accuracy.sh" ;;
   -*) echo "unknown option $1 (see the head of $0)" >&2; exit 2 ;;
