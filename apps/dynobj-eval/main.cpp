@@ -33,7 +33,7 @@ void writeOutputs(const std::string& dir, const std::string& title, const std::s
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-eval: evaluate dynamic-point detections and write a report", ' ',
                      "0.1");
-  TCLAP::ValueArg<std::string> run_in("", "run",
+  TCLAP::ValueArg<std::string> run_in("i", "run",
                                       "Scenario (.yaml), sequence folder or .rawlog to simulate "
                                       "(if needed), detect and evaluate",
                                       false, "", "input", cmd);
@@ -72,23 +72,29 @@ int run(int argc, char** argv) {
       "reviewed' line): refuse (default), skip them, or include them as they are",
       false, "refuse", "refuse|skip|include", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
+  TCLAP::SwitchArg overwrite("w", "overwrite", "Replace the report of an earlier run", cmd);
+  const apps::ThreadsArg threads(cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (run_in.isSet() == (gt.isSet() || pred.isSet()) || gt.isSet() != pred.isSet()) {
     std::cerr << "dynobj-eval: error: give either --run <input>, or both --gt and --pred\n";
     return 2;
   }
-  apps::ensureDirectory(out.getValue());
-  apps::ensureDirectory(out.getValue() + "/overlays");
+  const std::string& dir = out.getValue();
+  apps::refuseExisting({dir + "/report.html", dir + "/summary.json", dir + "/summary.md"},
+                       overwrite.isSet());
+  apps::OutputFolder folder(dir), overlay_folder(dir + "/overlays");  // removed again on an error
   const std::string command = commandLine(argc, argv);
 
   if (gt.isSet()) {  // existing files: metrics only (no frames, so no overlays or timings)
     writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command,
                  {eval::scoreLabelFiles(gt.getValue(), pred.getValue(), unreviewed.getValue())});
+    folder.keep(), overlay_folder.keep();
     return 0;
   }
 
   eval::RunOptions opts;
   opts.params = apps::loadDetectorParams(config.getValue());
+  threads.apply(opts.params);
   if (drift.isSet()) opts.drift = eval::DriftParams::parse(drift.getValue());
   opts.sensor_label = label.getValue();
   opts.min_object_points = min_points.getValue();
@@ -121,6 +127,7 @@ int run(int argc, char** argv) {
     if (tty && !quiet.isSet()) std::cerr << "\n";
   }
   writeOutputs(out.getValue(), "dynobj-eval: " + seq.name, command, runs);
+  folder.keep(), overlay_folder.keep();
   return 0;
 }
 

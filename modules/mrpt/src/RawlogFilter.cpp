@@ -106,6 +106,9 @@ RawlogFilterSummary filterRawlog(const std::string& input, const std::string& ou
   const RawlogFilterSummary summary =
       threads > 1 ? detail::filterPipelined(reader, out, o, threads, onResult, labels || tracks)
                   : filterSerial(reader, out, o, onResult);
+  if (summary.filter.lidar == 0 && !o.allow_none)  // nothing written: the .partial is removed
+    throw std::runtime_error("'" + input +
+                             "': " + summary.filter.nothingFiltered(o.filter.sensor_label));
   out.commit();
   if (labels) labels->close();
   if (tracks) tracks->close();

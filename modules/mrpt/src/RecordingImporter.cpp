@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -88,6 +89,37 @@ class SweepWriter {
   std::vector<io::TimedPose> poses_;
 };
 
+/// Points of the sweeps so far against the --sensor preset's field of view.
+struct PresetFit {
+  std::size_t valid = 0, outside = 0;
+};
+
+/// Throws unless the --sensor preset fits sweep `file` (and the sweeps before it, `fit`): no more
+/// lasers in the data than rows in the preset, and at most o.max_outside_fov of the valid points
+/// outside its field of view.
+void checkPresetFits(const ImportOptions& o, const std::string& file, int lasers,
+                     const core::ProjectionStats& st, PresetFit& fit) {
+  const core::SensorModel& m = *o.sensor;
+  const std::string preset = "the sensor preset '" + o.sensor_file + "' (" + m.model + ", " +
+                             std::to_string(m.rows) + " rows)";
+  if (lasers > m.rows)
+    throw std::runtime_error(preset + " does not fit the data: '" + file + "' holds " +
+                             std::to_string(lasers) + " lasers; give the preset of the sensor " +
+                             "that recorded it, or no --sensor (rows from the data)");
+  fit.valid += st.input_points - st.invalid;
+  fit.outside += st.outside_fov;
+  const double share = fit.valid ? static_cast<double>(fit.outside) / fit.valid : 0.0;
+  if (share > o.max_outside_fov) {
+    char pct[32];
+    std::snprintf(pct, sizeof(pct), "%.1f %%", 100.0 * share);
+    throw std::runtime_error(
+        preset + " does not fit the data: " + std::to_string(fit.outside) + " of the " +
+        std::to_string(fit.valid) + " valid points (" + pct + ") of the sweeps up to '" + file +
+        "' fall outside its field of " +
+        "view; give the preset of the sensor that recorded it, or no --sensor");
+  }
+}
+
 ImportSummary importFolder(const ImportOptions& o, const std::string& output,
                            const ImportProgress& progress) {
   io::CloudFolder folder(o.input, o.times);
@@ -99,6 +131,8 @@ ImportSummary importFolder(const ImportOptions& o, const std::string& output,
   std::optional<core::SensorModel> hint = o.sensor;
   core::LidarFrame frame;
   double scale = 0;
+  std::map<std::string, std::size_t> rule_sweeps;  // sweeps per row-recovery rule
+  PresetFit fit;
   for (std::size_t k = 0; k < folder.size(); k++) {
     io::CloudFile file = folder.read(k);
     core::PointCloud& cloud = file.cloud;
@@ -120,20 +154,23 @@ ImportSummary importFolder(const ImportOptions& o, const std::string& output,
     for (float& v : cloud.intensity) v = static_cast<float>(v * scale);
     core::RowSource source{};
     core::ProjectionStats st;
+    int lasers = 0;
     try {
-      st = core::projectUnordered(cloud, hint, frame, &source);
+      st = core::projectUnordered(cloud, hint, frame, &source, &lasers);
     } catch (const std::invalid_argument& e) {
       throw io::FormatError(folder.path(k) + ": " + e.what() + "; give --sensor");
     }
+    if (o.sensor) checkPresetFits(o, folder.path(k), lasers, st, fit);
     if (!hint && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
       hint = frame.sensor;  // later sweeps keep the first complete sweep's rows
-    if (s.rows_from.empty() || source != core::RowSource::FiringOrder)
-      s.rows_from = core::toString(source);
+    rule_sweeps[core::toString(source)]++;
     // MRPT reads a zero timestamp as 'invalid': without a times file, sweep k is at (k+1) periods.
     frame.timestamp_ns = folder.timestampNs(k) + (folder.hasTimes() ? 0 : folder.periodNs());
     writer.write(frame, st, s);
     if (progress) progress(k + 1, folder.size());
   }
+  for (const auto& [rule, n] : rule_sweeps)
+    s.rows_from += (s.rows_from.empty() ? "" : ", ") + rule + " " + std::to_string(n);
   writer.commit();
   return s;
 }

@@ -70,7 +70,8 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
   for (const std::string& label : sensors) revise(label, true);
   release(on_frame, true);
   if (n == 0 && opts_.require_frames)
-    throw std::runtime_error("no LiDAR observation in " + source_.describe());
+    throw std::runtime_error("no LiDAR observation in " + source_.describe() +
+                             source_.noFramesDetail());
   return n;
 }
 
