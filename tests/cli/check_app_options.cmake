@@ -4,6 +4,7 @@
 #   cmake -DBIN=<dir of the apps> -DDOC=docs/usage.md -P check_app_options.cmake
 # Each app's --help must exit 0 and print no exception; each option of its row must be in the
 # help, and each common option in the help must be in its row (the table is true both ways).
+cmake_policy(SET CMP0057 NEW)  # if(IN_LIST)
 set(COMMON -i -o -w -q -c --sensor --sensor-label --from --to --threads)
 file(STRINGS "${DOC}" lines)
 set(in_table FALSE)
