@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "dynobj/mrptio/RangeScanLayout.h"
 #include "dynobj/mrptio/RawlogWriter.h"
@@ -169,7 +170,10 @@ ImportSummary importFolder(const ImportOptions& o, const std::string& output,
     writer.write(frame, st, s);
     if (progress) progress(k + 1, folder.size());
   }
-  for (const auto& [rule, n] : rule_sweeps)
+  std::vector<std::pair<std::string, std::size_t>> rules(rule_sweeps.begin(), rule_sweeps.end());
+  std::stable_sort(rules.begin(), rules.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });  // most first
+  for (const auto& [rule, n] : rules)
     s.rows_from += (s.rows_from.empty() ? "" : ", ") + rule + " " + std::to_string(n);
   writer.commit();
   return s;
