@@ -42,7 +42,7 @@ if [ "${1:-}" = "--cell" ]; then
   if ! "$BIN/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/$scen.yaml" -o "$dir/sim" \
        --frames "$FRAMES" --seed "$seed" "${sets[@]}" --compression 0 -q > "$dir/sim.log" 2>&1 ||
      ! "$BIN/dynobj-eval" --run "$dir/sim" -o "$dir/eval" --modes intensity --overlays 0 \
-       -c "$CONFIG" -q > "$dir/eval.log" 2>&1; then
+       -c "$CONFIG" -q -w > "$dir/eval.log" 2>&1; then
     echo "[matrix] FAILED $scen $sensor seed $seed $md (see $dir/*.log)" >&2
     exit 0  # the other cells go on; the summary lists missing cells
   fi

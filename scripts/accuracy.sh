@@ -53,7 +53,7 @@ simulate() {
 evaluate() {
   local seq="$1" dir="$2"
   shift 2
-  "$BIN/dynobj-eval" --run "$seq" -o "$dir" --modes intensity --overlays 0 -q "$@" > /dev/null
+  "$BIN/dynobj-eval" --run "$seq" -o "$dir" --modes intensity --overlays 0 -q -w "$@" > /dev/null
   jq -r '.runs[0] | [.precision, .recall, .iou, .f1] | map(if . == null then "n/a"
          else (. * 1000 | round / 1000 | tostring) end) | join(" ")' "$dir/summary.json"
 }
@@ -75,7 +75,7 @@ table1() {
   } > "$summary.partial"
   for s in "${scenarios[@]}"; do
     log "Table I: scenario ${s}"
-    "$BIN/dynobj-eval" --run "$SCEN/${s}.yaml" -o "$OUT/${s}" -q
+    "$BIN/dynobj-eval" --run "$SCEN/${s}.yaml" -o "$OUT/${s}" -q -w
     { echo "#### ${s}"; echo; cat "$OUT/${s}/summary.md"; echo; } >> "$summary.partial"
   done
   mv "$summary.partial" "$summary"

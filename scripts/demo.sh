@@ -28,10 +28,10 @@ log "simulating the hall sample (40 sweeps, OS0-64 512 x 10)"
 SAMPLE="$DYNOBJ_ROOT/rawlogs/hall-small/hall-small"
 log "detecting moving objects in the committed sample"
 "$BUILD_DIR/apps/dynobj-detect" -i "$SAMPLE.rawlog" --sensor-label LIDAR --gt "$SAMPLE.gt.labels" \
-  -o "$OUT/detect/hall-small.det.labels" --overlay-dir "$OUT/detect"
+  -o "$OUT/detect/hall-small.det.labels" --overlay-dir "$OUT/detect" -w
 log "evaluating: this detector (own ego-motion, ground-truth ego-motion, drifting odometry) and MRPT's"
 log "CPointCloudFilterByDistance on the committed sample"
-"$BUILD_DIR/apps/dynobj-eval" --run "$DYNOBJ_ROOT/rawlogs/hall-small" -o "$OUT/eval" -q
+"$BUILD_DIR/apps/dynobj-eval" --run "$DYNOBJ_ROOT/rawlogs/hall-small" -o "$OUT/eval" -q -w
 log "the main job: rawlog-dynobj, then stock icp-slam on the raw and on the filtered sample"
 SLAM="$OUT/slam"
 rm -rf "$SLAM" && mkdir -p "$SLAM/raw" "$SLAM/filtered"

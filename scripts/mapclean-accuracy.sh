@@ -51,7 +51,7 @@ run() {
   log "mapclean: ${label}"
   local t
   t=$( { /usr/bin/time -f "%e %M" "$BIN/dynobj-mapclean" -i "$DIR/hall/hall.rawlog" \
-           -o "$DIR/$name" --poses "$poses" --gt "$DIR/hall/hall.gt.labels" -q "$@" \
+           -o "$DIR/$name" --poses "$poses" --gt "$DIR/hall/hall.gt.labels" -q -w "$@" \
            > "$DIR/$name.txt"; } 2>&1 | tail -n1)
   local secs=${t% *} kb=${t#* }
   # "SA 99.58%  DA 96.31%  AA 97.93%  ghost points 2790  (...)", "static map 2362845 points (...)"
@@ -128,7 +128,7 @@ if [ "$WANT_O2M" = 1 ]; then
   if [ ! -f "$DIR/icp/cleaned.simplemap" ] && [ ! -f "$DIR/icp-row/cleaned.simplemap" ]; then
     log "mapclean: the icp-slam row's cleaned simplemap"
     "$BIN/dynobj-mapclean" -i "$DIR/hall/hall.rawlog" -o "$DIR/icp-row" --poses "$ICP_SM" \
-      --level-poses -q > "$DIR/icp-row.txt"
+      --level-poses -q -w > "$DIR/icp-row.txt"
   fi
   CLEANED="$DIR/icp/cleaned.simplemap"
   [ -f "$CLEANED" ] || CLEANED="$DIR/icp-row/cleaned.simplemap"

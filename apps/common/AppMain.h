@@ -17,6 +17,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dynobj::apps {
 
@@ -60,6 +61,45 @@ inline void ensureDirectory(const std::string& dir) {
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error("cannot create output directory '" + dir + "'" +
                              (ec ? ": " + ec.message() : std::string()));
+}
+
+/// An output folder made for this run (ensureDirectory): destroyed before keep() (the run
+/// failed), the folders it created are removed again while they are empty, so that an error leaves
+/// no empty folder behind.
+class OutputFolder {
+ public:
+  explicit OutputFolder(const std::string& dir) {
+    namespace fs = std::filesystem;
+    for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && !fs::exists(p);
+         p = p.parent_path()) {
+      created_.push_back(p);  // deepest first
+      if (p == p.parent_path()) break;
+    }
+    ensureDirectory(dir);
+  }
+  ~OutputFolder() {
+    if (kept_) return;
+    std::error_code ec;
+    for (const auto& p : created_)
+      if (!std::filesystem::is_empty(p, ec) || ec || !std::filesystem::remove(p, ec)) break;
+  }
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+  /// The run succeeded: the folder stays, even empty.
+  void keep() { kept_ = true; }
+
+ private:
+  std::vector<std::filesystem::path> created_;
+  bool kept_ = false;
+};
+
+/// Throws "output '<path>' exists (use -w to replace it)" for the first non-empty path of `paths`
+/// that exists, unless `overwrite`: no tool replaces an output without -w.
+inline void refuseExisting(std::initializer_list<std::string> paths, bool overwrite) {
+  if (overwrite) return;
+  for (const auto& p : paths)
+    if (!p.empty() && std::filesystem::exists(p))
+      throw std::runtime_error("output '" + p + "' exists (use -w to replace it)");
 }
 
 /// Whether every non-empty path of `paths` exists (for --skip-existing: our outputs are written

@@ -6,14 +6,16 @@
 
 #include <dynobj/core/DynamicObjectDetector.h>
 #include <dynobj/core/SensorModel.h>
+#include <dynobj/io/IniFile.h>
 #include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/ObservationConverter.h>
-#include <mrpt/config/CConfigFile.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "AppMain.h"
 
@@ -42,16 +44,45 @@ class SensorArgs {
   mutable TCLAP::ValueArg<std::string> sensor_, label_;  // TCLAP's getters are not const
 };
 
-/// The detector's parameters from `ini` (defaults when empty), sections prefixed by `section`.
-/// Throws when the file does not exist or a key is bad.
-inline core::DetectorParams loadDetectorParams(const std::string& ini,
-                                               const std::string& section = "") {
+/// --threads for the tools that run the detector: its [pipeline] threads (1 = every stage on one
+/// core, 2 = the ego-motion on a second thread; the same results either way).
+class ThreadsArg {
+ public:
+  explicit ThreadsArg(TCLAP::CmdLine& cmd)
+      : values_{1, 2},
+        allowed_(values_),
+        arg_("", "threads",
+             "Threads of the detector: 1 = one core, 2 = the ego-motion on a second thread "
+             "(default: the configuration's [pipeline] threads, 2); same results",
+             false, 2, &allowed_) {
+    cmd.add(arg_);
+  }
+  /// Sets p.pipeline.threads when --threads was given.
+  void apply(core::DetectorParams& p) const {
+    if (arg_.isSet()) p.pipeline.threads = arg_.getValue();
+  }
+
+ private:
+  std::vector<int> values_;
+  TCLAP::ValuesConstraint<int> allowed_;
+  mutable TCLAP::ValueArg<int> arg_;  // TCLAP's getters are not const
+};
+
+/// The detector's parameters from `ini` (defaults when empty), sections prefixed by `section`,
+/// and those of `extra` (section name, its parameters) from the same file. Throws when the file
+/// does not exist, or a value, key or section is bad (io::IniFile: "file:line: unknown key ...").
+/// With a prefix, sections that neither start with it nor resemble one of ours are left alone.
+inline core::DetectorParams loadDetectorParams(
+    const std::string& ini, const std::string& section = "",
+    std::initializer_list<std::pair<const char*, core::StageParams*>> extra = {}) {
   core::DetectorParams p;
   if (ini.empty()) return p;
-  if (!std::filesystem::exists(ini))
-    throw std::runtime_error("config file '" + ini + "' does not exist");
-  mrpt::config::CConfigFile cfg(ini);
-  p.load(cfg, section);
+  io::IniFile file(ini, "config file");
+  file.expectDetector(section);
+  for (const auto& [name, params] : extra) file.expect(name, params->keys());
+  file.check(section);
+  p.load(file.config(), section);
+  for (const auto& [name, params] : extra) params->loadFromConfigFile(file.config(), name);
   return p;
 }
 

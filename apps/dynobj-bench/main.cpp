@@ -7,6 +7,7 @@
 #include <dynobj/mrptio/SequenceRunner.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "../common/AppOptions.h"
@@ -18,37 +19,33 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> scenario(
       "s", "scenario", "Scenario YAML (default: the shipped hall)", false, "", "file.yaml", cmd);
   TCLAP::ValueArg<std::string> sensor("", "sensor",
-                                      "Sensor preset, relative to share/dynobj (default: the "
-                                      "scenario's, OS0-64 1024 x 10)",
-                                      false, "", "sensors/x.ini", cmd);
+                                      "Sensor preset INI, or its path in share/dynobj (default: "
+                                      "the scenario's, OS0-64 1024 x 10)",
+                                      false, "", "file.ini", cmd);
   TCLAP::ValueArg<int> frames("n", "frames", "Frames to time", false, 100, "N", cmd);
   TCLAP::ValueArg<int> warmup("", "warmup", "Frames run before timing starts", false, 10, "N", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "Detector parameters (INI)", false, "",
                                       "file.ini", cmd);
-  TCLAP::ValueArg<int> threads("", "threads",
-                               "[pipeline] threads: 1 = one core, 2 = the ego-motion on a second "
-                               "thread (default: the configuration's, 2)",
-                               false, 0, "1|2", cmd);
+  const dynobj::apps::ThreadsArg threads(cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (frames.getValue() < 1 || warmup.getValue() < 0) {
     std::cerr << "dynobj-bench: error: --frames must be >= 1 and --warmup >= 0\n";
-    return 2;
-  }
-  if (threads.isSet() && (threads.getValue() < 1 || threads.getValue() > 2)) {
-    std::cerr << "dynobj-bench: error: --threads must be 1 or 2\n";
     return 2;
   }
 
   const std::string share = dynobj::apps::shareDir();
   std::map<std::string, std::string> overrides{
       {"frames", std::to_string(frames.getValue() + warmup.getValue())}};
-  if (sensor.isSet()) overrides["sensor"] = sensor.getValue();
+  if (sensor.isSet())  // a file here, else a path in share/dynobj (sensors/x.ini)
+    overrides["sensor"] = std::filesystem::exists(sensor.getValue())
+                              ? std::filesystem::absolute(sensor.getValue()).string()
+                              : sensor.getValue();
   const dynobj::sim::LidarSimulator sim(dynobj::sim::Scenario::fromYamlFile(
       scenario.isSet() ? scenario.getValue() : share + "/scenarios/hall.yaml", share, overrides));
   dynobj::eval::SimulatedFrames frames_in(sim);  // simulated in next(): not timed
   dynobj::mrptio::SequenceOptions so;
   so.detector = dynobj::apps::loadDetectorParams(config.getValue());
-  if (threads.isSet()) so.detector.pipeline.threads = threads.getValue();
+  threads.apply(so.detector);
   dynobj::core::TimingStats stats;
   dynobj::mrptio::SequenceRunner(frames_in, so).run([&](const dynobj::mrptio::FrameResult& fr) {
     if (fr.frame.index >= static_cast<std::size_t>(warmup.getValue()))

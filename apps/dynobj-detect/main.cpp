@@ -61,10 +61,16 @@ int run(int argc, char** argv) {
       "identity), as a TUM file of sensor poses",
       false, "", "file.tum", cmd);
   TCLAP::SwitchArg verbose("v", "verbose", "One line per frame", cmd);
+  TCLAP::SwitchArg overwrite("w", "overwrite", "Replace existing output files", cmd);
+  TCLAP::SwitchArg quiet("q", "quiet", "No progress output (only the summary)", cmd);
+  const dynobj::apps::ThreadsArg threads(cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
+  dynobj::apps::refuseExisting({out.getValue(), poses_out.getValue(), consistency.getValue()},
+                               overwrite.isSet());
   dynobj::mrptio::SequenceOptions so;
   so.detector = dynobj::apps::loadDetectorParams(config.getValue());
+  threads.apply(so.detector);
   if (poses.isSet() && ego_truth.isSet())
     throw std::invalid_argument(
         "give --poses (used as motion) or --ego-truth (compared), not both");
@@ -73,7 +79,8 @@ int run(int argc, char** argv) {
   so.ground_truth = gt.getValue();
   so.single_sensor =
       out.isSet() || consistency.isSet() || ego_truth.isSet() || poses_out.isSet();  // one sensor
-  if (overlays.isSet()) dynobj::apps::ensureDirectory(overlays.getValue());
+  std::optional<dynobj::apps::OutputFolder> overlay_dir;
+  if (overlays.isSet()) overlay_dir.emplace(overlays.getValue());
   dynobj::mrptio::RawlogFrameSource source(in.getValue(), sensor.converter(),
                                            {sensor.label(), 0, SIZE_MAX});
   std::optional<dynobj::eval::EgoMotionCheck> ego_check;
@@ -124,6 +131,7 @@ int run(int argc, char** argv) {
     dynobj::io::writePng(consistency.getValue(), map_check->topView());
   }
   std::cout << diag.metricsLines();
+  if (overlay_dir) overlay_dir->keep();
   return 0;
 }
 

@@ -53,10 +53,10 @@ std::function<void(const std::string&, std::size_t)> progressPrinter(const std::
 }
 
 /// --truth: a real recording scored point by point against human labels.
-int runAgainstTruth(const std::string& input, const std::string& truth_path,
-                    const std::string& calib, eval::PointEvalOptions opts,
-                    const apps::SensorArgs& sensor, const std::string& label,
-                    const std::string& out, const std::string& command, bool quiet) {
+void runAgainstTruth(const std::string& input, const std::string& truth_path,
+                     const std::string& calib, eval::PointEvalOptions opts,
+                     const apps::SensorArgs& sensor, const std::string& label,
+                     const std::string& out, const std::string& command, bool quiet) {
   mrptio::OpenedFrameSource in = mrptio::openFrameSource(input, sensor.model(), label);
   const std::unique_ptr<eval::PointTruthSource> truth = eval::openPointTruth(truth_path, calib);
   const std::string name = std::filesystem::path(input).filename().string();
@@ -72,13 +72,12 @@ int runAgainstTruth(const std::string& input, const std::string& truth_path,
     io::writeFileAtomically(out + "/truth-tracks.csv", eval::trackMotionCsv(e.tracks));
     std::cerr << "[dynobj-eval] the tracks' judged motion: " << out << "/truth-tracks.csv\n";
   }
-  return 0;
 }
 
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-eval: evaluate dynamic-point detections and write a report", ' ',
                      "0.1");
-  TCLAP::ValueArg<std::string> run_in("", "run",
+  TCLAP::ValueArg<std::string> run_in("i", "run",
                                       "Scenario (.yaml), sequence folder or .rawlog to simulate "
                                       "(if needed), detect and evaluate",
                                       false, "", "input", cmd);
@@ -138,36 +137,45 @@ int run(int argc, char** argv) {
       false, "", "dir", cmd);
   const apps::SensorArgs sensor(cmd, false);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
+  TCLAP::SwitchArg overwrite("w", "overwrite", "Replace the report of an earlier run", cmd);
+  const apps::ThreadsArg threads(cmd);
   if (const auto stop = apps::parseCommandLine(cmd, argc, argv)) return *stop;
   if (run_in.isSet() == (gt.isSet() || pred.isSet()) || gt.isSet() != pred.isSet()) {
     std::cerr << "dynobj-eval: error: give either --run <input>, or both --gt and --pred\n";
     return 2;
   }
-  apps::ensureDirectory(out.getValue());
-  apps::ensureDirectory(out.getValue() + "/overlays");
+  const std::string& dir = out.getValue();
+  apps::refuseExisting({dir + "/report.html", dir + "/summary.json", dir + "/summary.md"},
+                       overwrite.isSet());
+  apps::OutputFolder folder(dir), overlay_folder(dir + "/overlays");  // removed again on an error
   const std::string command = commandLine(argc, argv);
 
   if (truth.isSet()) {
     eval::PointEvalOptions po;
     po.params = apps::loadDetectorParams(config.getValue());
+    threads.apply(po.params);
     if (modes.isSet()) po.modes = eval::parsePointModes(modes.getValue());
     po.min_object_points = min_points.getValue();
     po.truth_poses = truth_poses.getValue();
     po.truth_dir = truth_out.getValue();
     po.predictions_dir = pred_out.getValue();
     if (frames.getValue() > 0) po.max_frames = static_cast<std::size_t>(frames.getValue());
-    return runAgainstTruth(run_in.getValue(), truth.getValue(), calib.getValue(), po, sensor,
-                           label.getValue(), out.getValue(), command, quiet.isSet());
+    runAgainstTruth(run_in.getValue(), truth.getValue(), calib.getValue(), po, sensor,
+                    label.getValue(), dir, command, quiet.isSet());
+    folder.keep(), overlay_folder.keep();
+    return 0;
   }
 
   if (gt.isSet()) {  // existing files: metrics only (no frames, so no overlays or timings)
     writeOutputs(out.getValue(), "dynobj-eval: " + pred.getValue(), command,
                  {eval::scoreLabelFiles(gt.getValue(), pred.getValue(), unreviewed.getValue())});
+    folder.keep(), overlay_folder.keep();
     return 0;
   }
 
   eval::RunOptions opts;
   opts.params = apps::loadDetectorParams(config.getValue());
+  threads.apply(opts.params);
   if (drift.isSet()) opts.drift = eval::DriftParams::parse(drift.getValue());
   opts.sensor_label = label.getValue();
   opts.min_object_points = min_points.getValue();
@@ -191,6 +199,7 @@ int run(int argc, char** argv) {
     runs.push_back(eval::runExperiment(seq, opts));
   }
   writeOutputs(out.getValue(), "dynobj-eval: " + seq.name, command, runs);
+  folder.keep(), overlay_folder.keep();
   return 0;
 }
 

@@ -34,7 +34,7 @@ int run(int argc, char** argv) {
   }
 
   const std::string dir = out.getValue();
-  dynobj::apps::ensureDirectory(dir);
+  dynobj::apps::OutputFolder folder(dir);  // removed again if no image is written
 
   dynobj::mrptio::RawlogFrameSource stream(in.getValue(), sensor.converter(),
                                            {sensor.label(), from.getValue(), to.getValue()});
@@ -61,6 +61,7 @@ int run(int argc, char** argv) {
         "no LiDAR observation" + (sensor.labelSet() ? " with label '" + sensor.label() + "'" : "") +
         " in '" + in.getValue() + "'; labels seen:" + (seen.empty() ? " none" : seen));
   }
+  folder.keep();
   std::cout << "dynobj-frames: " << frames << " frame(s) from " << stream.entriesRead()
             << " entries written to " << dir << "\n";
   return 0;

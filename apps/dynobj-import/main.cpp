@@ -52,6 +52,7 @@ int run(int argc, char** argv) {
   o.rate = rate.getValue();
   o.sensor_label = label.getValue();
   if (sensor.isSet()) o.sensor = dynobj::io::readSensorModel(sensor.getValue());
+  o.sensor_file = sensor.getValue();
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto progress = [&](std::size_t done, std::size_t total) {
     if (!tty) return;

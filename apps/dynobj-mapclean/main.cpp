@@ -18,9 +18,11 @@ int run(int argc, char** argv) {
                                   "", "in", cmd);
   const dynobj::apps::OutputArg out(cmd, "Output folder (created if missing)", true, "dir",
                                     "out-dir");
-  TCLAP::ValueArg<std::string> poses(
-      "", "poses", "Pose source: odometry | ego | viewpoint | file.tum | file.simplemap", false,
-      "odometry", "source", cmd);
+  TCLAP::ValueArg<std::string> poses("", "poses",
+                                     "Pose source: auto (default: odometry if the input has it, "
+                                     "else viewpoint, else ego) | odometry | ego | viewpoint | "
+                                     "file.tum | file.simplemap",
+                                     false, "auto", "source", cmd);
   TCLAP::SwitchArg tum_robot("", "tum-robot-poses", "The TUM file holds robot (not sensor) poses",
                              cmd);
   TCLAP::ValueArg<double> pose_tol("", "pose-tolerance", "Timestamp matching tolerance [s]", false,
@@ -55,18 +57,19 @@ int run(int argc, char** argv) {
                              "Cleaned simplemap: keyframe every this many m (0 = every scan)",
                              false, 1.0, "m", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
+  TCLAP::SwitchArg overwrite("w", "overwrite", "Replace the outputs of an earlier run", cmd);
+  const dynobj::apps::ThreadsArg threads(cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 
   dynobj::mapclean::MapCleanOptions o;
   o.input = in.getValue();
   o.out_dir = out.getValue();
+  o.overwrite = overwrite.isSet();
   o.poses = poses.getValue();
   o.pose_options.tolerance_s = pose_tol.getValue();
   o.pose_options.tum_robot_poses = tum_robot.getValue();
-  if (config.isSet()) {
-    o.detector = dynobj::apps::loadDetectorParams(config.getValue());
-    o.clean.loadFromConfigFile(mrpt::config::CConfigFile(config.getValue()), "mapclean");
-  }
+  o.detector = dynobj::apps::loadDetectorParams(config.getValue(), "", {{"mapclean", &o.clean}});
+  threads.apply(o.detector);
   if (voxel.isSet()) o.clean.voxel_size = voxel.getValue();
   if (single.isSet()) o.clean.second_pass = false;
   if (level.isSet()) o.clean.level_poses = true;
@@ -93,7 +96,9 @@ int run(int argc, char** argv) {
     if (total) std::cerr << "/" << total;
     std::cerr << (tty ? "" : "\n") << std::flush;
   };
+  dynobj::apps::OutputFolder folder(o.out_dir);  // removed again if the run fails before a file
   const auto s = dynobj::mapclean::runMapClean(o, progress);
+  folder.keep();
   if (tty) std::cerr << "\n";
   std::cout << dynobj::mapclean::summaryText(s, o);
   return 0;

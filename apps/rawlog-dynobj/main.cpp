@@ -50,6 +50,10 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<int> level("", "compression-level",
                              "Output gzip level: 0 = plain rawlog, 1 = fastest (default) .. 3",
                              false, 1, "0-3", cmd);
+  TCLAP::SwitchArg allow_none("", "allow-none",
+                              "A run that filters no LiDAR frame is a plain copy, exit 0 (without "
+                              "it: an error listing the labels and classes found)",
+                              cmd);
   TCLAP::ValueArg<unsigned> threads("", "threads",
                                     "Threads (0 = one per core, default; 1 = read, detect and "
                                     "write one after another)",
@@ -83,6 +87,7 @@ int run(int argc, char** argv) {
   o.overwrite = overwrite.isSet();
   o.compression_level = level.getValue();
   o.threads = threads.getValue();
+  o.allow_none = allow_none.isSet();
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto t0 = std::chrono::steady_clock::now();
   if (tty)

@@ -2,9 +2,10 @@
 # Black-box check of one command-line run, used by tests/CMakeLists.txt:
 #   cmake -DCMD="prog;arg;..." [-DPREPARE="sh;-c;..."] [-DEXPECT_RC=0] [-DEXPECT_OUT=regex]
 #         [-DEXPECT_ERR=regex] [-DEXPECT_FILES="a;b"] [-DEXPECT_NO_FILES="c"]
-#         [-DEXPECT_SAME="a=b;c=d"] -P check_command.cmake
+#         [-DEXPECT_SAME="a=b;c=d"] [-DCLEANUP="dir;file"] -P check_command.cmake
 # Every file the test expects the run to write (EXPECT_FILES, and the left-hand side of each
 # EXPECT_SAME pair: output=reference) is removed first, so a leftover of an earlier run cannot pass.
+# CLEANUP (files or folders) is removed when every check passed (a failed test keeps it to look at).
 foreach(f IN LISTS EXPECT_FILES)
   file(REMOVE "${f}")
 endforeach()
@@ -55,4 +56,7 @@ foreach(pair IN LISTS EXPECT_SAME)
   if(NOT same EQUAL 0)
     message(FATAL_ERROR "files differ: ${a} vs ${b}")
   endif()
+endforeach()
+foreach(f IN LISTS CLEANUP)
+  file(REMOVE_RECURSE "${f}")
 endforeach()

@@ -234,9 +234,9 @@ async function main() {
 
   // ---- dynobj-eval reads the file: refuses the unreviewed sweeps unless asked ----
   const det = path.join(args.work, 'detect.labels');
-  const d = spawnSync(path.join(args.bin, 'dynobj-detect'), ['-i', args.sample + '.rawlog', '-o', det], {encoding: 'utf8'});
+  const d = spawnSync(path.join(args.bin, 'dynobj-detect'), ['-i', args.sample + '.rawlog', '-o', det, '-w'], {encoding: 'utf8'});
   if (d.status !== 0) fail('dynobj-detect failed: ' + d.stderr);
-  const evalArgs = ['--gt', base + '.labels', '--pred', det, '-o', path.join(args.work, 'eval')];
+  const evalArgs = ['--gt', base + '.labels', '--pred', det, '-o', path.join(args.work, 'eval'), '-w'];
   const refused = spawnSync(path.join(args.bin, 'dynobj-eval'), evalArgs, {encoding: 'utf8'});
   if (refused.status === 0 || !/not reviewed/.test(refused.stderr)) fail('dynobj-eval accepted unreviewed sweeps: ' + refused.stderr);
   console.log('dynobj-eval without --unreviewed: ' + refused.stderr.trim());

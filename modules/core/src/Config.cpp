@@ -56,6 +56,34 @@ double parseDouble(const std::string& where, const std::string& text) {
 
 }  // namespace
 
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  const auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+  const std::size_t n = a.size(), m = b.size();
+  // Optimal string alignment: Levenshtein plus the swap of two neighbouring characters.
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1, 0));
+  for (std::size_t i = 0; i <= n; i++) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; j++) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; i++)
+    for (std::size_t j = 1; j <= m; j++) {
+      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+          lower(a[i - 2]) == lower(b[j - 1]))
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[n][m];
+}
+
+std::string closestName(const std::string& word, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t best_d = std::min<std::size_t>(2, (word.size() + 2) / 3);
+  for (const std::string& n : names) {
+    const std::size_t d = editDistance(word, n);
+    if (d <= best_d && (best.empty() || d < best_d)) best = n, best_d = d;
+  }
+  return best;
+}
+
 void throwParameterError(const std::string& key, const std::string& what) {
   throw ParameterError(key + ": " + what);
 }

@@ -36,7 +36,23 @@ class Writer : public ParamVisitor {
   const std::string& s_;
 };
 
+class KeyCollector : public ParamVisitor {
+ public:
+  void value(const char* key, double&) override { keys.emplace_back(key); }
+  void value(const char* key, int&) override { keys.emplace_back(key); }
+  void value(const char* key, bool&) override { keys.emplace_back(key); }
+  void value(const char* key, std::string&) override { keys.emplace_back(key); }
+  void degrees(const char* key, double&) override { keys.emplace_back(key); }
+  std::vector<std::string> keys;
+};
+
 }  // namespace
+
+std::vector<std::string> StageParams::keys() const {
+  KeyCollector k;
+  const_cast<StageParams*>(this)->visit(k);  // the collector only reads the names
+  return k.keys;
+}
 
 void StageParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
                                      const std::string& section) {

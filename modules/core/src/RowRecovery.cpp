@@ -264,6 +264,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     lasers = firingOrderLasers(cloud, laser);
     out.source = RowSource::FiringOrder;
   }
+  out.lasers = std::max(lasers, 0);
   if (lasers > 0 && hint && lasers < hint->rows) {
     // Fewer lasers than the sensor has (a partial sweep, blocked beams): each takes the row of
     // the nearest beam of the hint's table, if no two lasers claim the same row.
@@ -317,9 +318,10 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
 }
 
 ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorModel>& hint,
-                                 LidarFrame& frame, RowSource* source) {
+                                 LidarFrame& frame, RowSource* source, int* lasers) {
   const RecoveredRows rows = recoverRows(cloud, hint);
   if (source) *source = rows.source;
+  if (lasers) *lasers = rows.lasers;
   const SphericalProjection projection(rows.sensor);
   return cloud.isOrganized() ? projection.organize(cloud, frame) : projection.project(cloud, frame);
 }

@@ -39,6 +39,13 @@ void SensorModel::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,
   validate();
 }
 
+const std::vector<std::string>& SensorModel::iniKeys() {
+  static const std::vector<std::string> keys{"model",           "rows",          "cols",
+                                             "beam_elevations", "elevation_top", "elevation_bottom",
+                                             "min_range",       "max_range",     "frequency"};
+  return keys;
+}
+
 void SensorModel::saveToConfigFile(::mrpt::config::CConfigFileBase& c, const std::string& s) const {
   c.write(s, "model", model);
   c.write(s, "rows", rows);

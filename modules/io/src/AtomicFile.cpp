@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/io/AtomicFile.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -17,6 +21,25 @@ void renameOrThrow(const std::string& from, const std::string& to) {
 
 }  // namespace
 
+std::string cannotWriteMessage(const std::string& path, int err) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  const std::string dir = parent.empty() ? "." : parent.string();
+  std::error_code ec;
+  std::string why;
+  if (!fs::exists(dir, ec))
+    why = "the folder '" + dir + "' does not exist";
+  else if (!fs::is_directory(dir, ec))
+    why = "'" + dir + "' is not a folder";
+  else if (access(dir.c_str(), W_OK) != 0)
+    why = "the folder '" + dir + "' is not writable";
+  else if (fs::is_directory(path, ec))
+    why = "it is a folder";
+  else
+    why = err ? std::strerror(err) : "unknown error";
+  return "cannot write '" + path + "': " + why;
+}
+
 std::string partialName(const std::string& path) {
   return path + ".partial";
 }
@@ -27,10 +50,12 @@ void commitPartial(const std::string& path) {
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), partial_(partialName(path_)) {
   guard_ = registerPartialOutput(partial_);
+  errno = 0;
   out_.open(partial_, std::ios::binary | std::ios::trunc);
   if (!out_) {
+    const int err = errno;
     unregisterPartialOutput(guard_);
-    throw std::runtime_error("cannot write '" + partial_ + "'");
+    throw std::runtime_error(cannotWriteMessage(path_, err));
   }
 }
 

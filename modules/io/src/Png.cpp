@@ -17,13 +17,18 @@ void writePng(const std::string& path, const cv::Mat& image) {
   } catch (const cv::Exception& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  if (!ok)
-    throw std::runtime_error("cannot write '" + path + "' (directory missing or not writable?)");
+  if (!ok) throw std::runtime_error(cannotWriteMessage(path));
 }
 
 void writePngAtomically(const std::string& path, const cv::Mat& image) {
   PartialPath file(path, ".png");  // OpenCV picks the codec by the extension
-  writePng(file.partial(), image);
+  bool ok = false;
+  try {
+    ok = cv::imwrite(file.partial(), image);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  }
+  if (!ok) throw std::runtime_error(cannotWriteMessage(path));
   file.commit();
 }
 

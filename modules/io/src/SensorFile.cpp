@@ -2,22 +2,22 @@
 #include "dynobj/io/SensorFile.h"
 
 #include <dynobj/core/Config.h>
-#include <mrpt/config/CConfigFile.h>
-#include <mrpt/system/filesystem.h>
+
+#include "dynobj/io/IniFile.h"
 
 namespace dynobj::io {
 
 using core::ParameterError;
 
 core::SensorModel readSensorModel(const std::string& ini_path, const std::string& section) {
-  if (!mrpt::system::fileExists(ini_path))
-    throw ParameterError("sensor file '" + ini_path + "' does not exist");
-  mrpt::config::CConfigFile cfg(ini_path);
-  if (!cfg.sectionExists(section))
+  IniFile ini(ini_path, "sensor file");
+  if (!ini.config().sectionExists(section))
     throw ParameterError(ini_path + ": section [" + section + "] not found");
+  ini.expect(section, core::SensorModel::iniKeys());
+  ini.check();
   core::SensorModel m;
   try {
-    m.loadFromConfigFile(cfg, section);
+    m.loadFromConfigFile(ini.config(), section);
   } catch (const ParameterError& e) {
     throw ParameterError(ini_path + ": [" + section + "] " + e.what());
   }

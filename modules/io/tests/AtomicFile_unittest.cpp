@@ -29,12 +29,15 @@ TEST(AtomicFile, UncommittedFileIsRemovedAndNothingAppearsUnderTheFinalName) {
   EXPECT_FALSE(::mrpt::system::fileExists(p));
 }
 
-TEST(AtomicFile, UnwritableFolderIsAnErrorNamingTheFile) {
+TEST(AtomicFile, UnwritableFolderIsAnErrorNamingTheFileAndTheCause) {
   try {
     writeFileAtomically("/nonexistent-dir/x.txt", "abc");
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.txt.partial"), std::string::npos)
-        << e.what();
+    EXPECT_STREQ(e.what(),
+                 "cannot write '/nonexistent-dir/x.txt': the folder '/nonexistent-dir' does not "
+                 "exist");
   }
+  EXPECT_EQ(dynobj::io::cannotWriteMessage("/proc/version/x"),
+            "cannot write '/proc/version/x': '/proc/version' is not a folder");
 }

@@ -11,10 +11,10 @@ namespace dynobj::mapclean {
 
 namespace fs = std::filesystem;
 
-KthExporter::KthExporter(std::string dir, bool with_ground_truth)
-    : dir_(std::move(dir)), partial_(io::partialName(dir_)) {
-  if (fs::exists(dir_))
-    throw std::runtime_error("export folder '" + dir_ + "' exists: remove it or choose another");
+KthExporter::KthExporter(std::string dir, bool with_ground_truth, bool replace)
+    : dir_(std::move(dir)), partial_(io::partialName(dir_)), replace_(replace) {
+  if (fs::exists(dir_) && !replace_)
+    throw std::runtime_error("export folder '" + dir_ + "' exists (use -w to replace it)");
   std::error_code ec;
   fs::remove_all(partial_, ec);
   fs::create_directories(fs::path(partial_) / "pcd", ec);
@@ -49,6 +49,7 @@ void KthExporter::close() {
   if (gt_) gt_->close();
   gt_.reset();
   std::error_code ec;
+  if (replace_) fs::remove_all(dir_, ec);
   fs::rename(partial_, dir_, ec);
   if (ec)
     throw std::runtime_error("cannot rename '" + partial_ + "' to '" + dir_ + "': " + ec.message());

@@ -30,11 +30,26 @@ bool isPcd(const std::string& f) {
 
 }  // namespace
 
+std::vector<std::string> outputFiles(const MapCleanOptions& o) {
+  std::vector<std::string> files;
+  for (const char* name : {"static", "dynamic"})
+    for (const char* ext : {".ply", ".pointsmap", ".txt"})
+      files.push_back(o.out_dir + "/" + name + ext);
+  for (const char* f : {"map.png", "static.png", "poses.tum"}) files.push_back(o.out_dir + "/" + f);
+  if (o.write_simplemap) files.push_back(o.out_dir + "/cleaned.simplemap");
+  if (!o.export_kth.empty()) files.push_back(o.export_kth);
+  return files;
+}
+
 MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto report = [&](const char* stage, std::size_t done, std::size_t total) {
     if (progress) progress(stage, done, total);
   };
+  if (!o.overwrite)
+    for (const std::string& f : outputFiles(o))
+      if (fs::exists(f))
+        throw std::runtime_error("output '" + f + "' exists (use -w to replace it)");
   std::optional<mrptio::GroundTruth> labels;  // the classification instead of the detector's
   if (!o.labels.empty()) {
     if (o.poses == "ego")
@@ -46,7 +61,9 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     labels.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
   }
   auto source = openScanSource(o.input, o.scan_options);
-  auto poses = makePoseSource(o.poses, o.pose_options);
+  PoseSourceOptions pose_options = o.pose_options;
+  pose_options.ego_available = !labels;
+  auto poses = makePoseSource(o.poses, pose_options);
   mrptio::SequenceOptions pass1;  // detection, ground truth checked against every scan
   pass1.detector = o.detector;
   pass1.detect = !labels;
@@ -66,7 +83,6 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   const std::string out = o.out_dir + "/";
 
   MapCleanSummary sum;
-  sum.poses = poses->describe();
   MapCleaner cleaner(o.clean);
   std::unique_ptr<CleanedSimplemapWriter> simplemap;
   if (o.write_simplemap)
@@ -74,7 +90,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
                                                          o.keyframe_distance, o.keyframe_angle);
   std::unique_ptr<KthExporter> exporter;
   if (!o.export_kth.empty())
-    exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr);
+    exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr, o.overwrite);
 
   const bool two_pass = o.clean.second_pass;
   const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
@@ -113,6 +129,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   });
   Scan scan;
   sum.scans = records.size();
+  sum.poses = poses->describe();  // after the first scan: what "auto" chose
   if (two_pass) {
     source->rewind();
     for (std::size_t k = 0; k < records.size(); k++) {

@@ -52,7 +52,7 @@ void CleanedSimplemapWriter::close() {
   const std::string partial = io::partialName(path_);
   if (!map_.saveToFile(partial)) {
     std::remove(partial.c_str());
-    throw std::runtime_error("cannot write simplemap '" + partial + "'");
+    throw std::runtime_error(io::cannotWriteMessage(path_) + " (simplemap)");
   }
   io::commitPartial(path_);
 }
@@ -68,8 +68,7 @@ void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& p
     const std::string file = base + ".pointsmap";
     {
       mrpt::io::CFileGZOutputStream out;
-      if (!out.open(io::partialName(file)))
-        throw std::runtime_error("cannot write '" + io::partialName(file) + "'");
+      if (!out.open(io::partialName(file))) throw std::runtime_error(io::cannotWriteMessage(file));
       mrpt::serialization::archiveFrom(out) << map;
     }
     io::commitPartial(file);
@@ -77,7 +76,7 @@ void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& p
   const std::string txt = base + ".txt";
   if (!map.saveXYZI_to_text_file(io::partialName(txt))) {
     std::remove(io::partialName(txt).c_str());
-    throw std::runtime_error("cannot write '" + io::partialName(txt) + "'");
+    throw std::runtime_error(io::cannotWriteMessage(txt));
   }
   io::commitPartial(txt);
 }

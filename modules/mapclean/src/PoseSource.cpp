@@ -137,27 +137,73 @@ std::vector<io::TimedPose> simplemapKeyframes(const std::string& file) {
 class SimplemapPoses : public PoseSource {
  public:
   SimplemapPoses(const std::string& file, const PoseSourceOptions& o)
-      : keyframes_(file, simplemapKeyframes(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)) {
-  }
-  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion&) override {
+      : keyframes_(file, simplemapKeyframes(file), static_cast<std::int64_t>(o.tolerance_s * 1e9)),
+        ego_available_(o.ego_available) {}
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion& ego) override {
     const std::int64_t t = s.frame.timestamp_ns;
     if (const auto* k = keyframes_.find(t)) {  // a keyframe: its robot pose, and its odometry
       last_kf_ = k->pose;
       last_kf_odometry_ = s.odometry;
+      since_kf_ = Eigen::Isometry3d::Identity();
       return k->pose * s.mount;
     }
+    since_kf_ = since_kf_ * ego.motion;  // the detector's ego-motion since the keyframe
     const auto* prev = keyframes_.before(t);
     if (!prev || !last_kf_) keyframes_.missing(s);
-    if (!s.odometry || !last_kf_odometry_)
-      keyframes_.missing(
-          s, "; scans between keyframes need odometry in the rawlog, and there is none");
-    return *last_kf_ * (last_kf_odometry_->inverse() * *s.odometry) * s.mount;
+    if (s.odometry && last_kf_odometry_)
+      return *last_kf_ * (last_kf_odometry_->inverse() * *s.odometry) * s.mount;
+    if (!ego_available_)
+      keyframes_.missing(s,
+                         "; scans between keyframes need odometry in the rawlog, or the "
+                         "detector's ego-motion (not with --labels)");
+    ego_between_ = true;
+    return *last_kf_ * s.mount * since_kf_;
   }
-  std::string describe() const override { return "simplemap '" + keyframes_.file() + "'"; }
+  std::string describe() const override {
+    return "simplemap '" + keyframes_.file() + "'" +
+           (ego_between_ ? " (ego-motion between keyframes: no odometry)" : "");
+  }
 
  private:
   StampedPoses keyframes_;
+  bool ego_available_;
+  bool ego_between_ = false;
   std::optional<Eigen::Isometry3d> last_kf_, last_kf_odometry_;
+  Eigen::Isometry3d since_kf_ = Eigen::Isometry3d::Identity();
+};
+
+/// "auto": the first scan decides (odometry, else a PCD VIEWPOINT, else the detector's ego-motion).
+class AutoPoses : public PoseSource {
+ public:
+  explicit AutoPoses(bool ego_available) : ego_available_(ego_available) {}
+  Eigen::Isometry3d pose(const Scan& s, const core::EgoMotion& ego) override {
+    if (!chosen_) {
+      if (s.odometry) {
+        chosen_ = std::make_unique<OdometryPoses>();
+        why_ = "the rawlog has odometry";
+      } else if (s.viewpoint) {
+        chosen_ = std::make_unique<ViewpointPoses>();
+        why_ = "the input has a VIEWPOINT per scan";
+      } else if (ego_available_) {
+        chosen_ = std::make_unique<EgoPoses>();
+        why_ = "the input has no odometry";
+      } else {
+        throw std::runtime_error("no odometry (CObservationOdometry) before " + scanName(s) +
+                                 ", and the detector's ego-motion does not run with --labels: "
+                                 "choose a pose source with --poses (a TUM file or a simplemap)");
+      }
+    }
+    return chosen_->pose(s, ego);
+  }
+  std::string describe() const override {
+    if (!chosen_) return "automatic";
+    return chosen_->describe() + " (chosen: " + why_ + ")";
+  }
+
+ private:
+  bool ego_available_;
+  std::unique_ptr<PoseSource> chosen_;
+  std::string why_;
 };
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -168,6 +214,7 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }  // namespace
 
 std::unique_ptr<PoseSource> makePoseSource(const std::string& spec, const PoseSourceOptions& opts) {
+  if (spec == "auto") return std::make_unique<AutoPoses>(opts.ego_available);
   if (spec == "odometry") return std::make_unique<OdometryPoses>();
   if (spec == "ego") return std::make_unique<EgoPoses>();
   if (spec == "viewpoint") return std::make_unique<ViewpointPoses>();
@@ -175,7 +222,7 @@ std::unique_ptr<PoseSource> makePoseSource(const std::string& spec, const PoseSo
   const bool simplemap = endsWith(spec, ".simplemap") || endsWith(spec, ".simplemap.gz");
   if (!tum && !simplemap)
     throw std::runtime_error("poses '" + spec +
-                             "': unknown format (expected odometry, ego, viewpoint, "
+                             "': unknown format (expected auto, odometry, ego, viewpoint, "
                              "a TUM file *.tum|*.txt or an MRPT *.simplemap[.gz])");
   if (!std::filesystem::is_regular_file(spec))
     throw std::runtime_error("poses file '" + spec + "' does not exist");

@@ -124,7 +124,9 @@ TEST(PoseSource, SimplemapKeyframesAndOdometryBridging) {
   }
   const std::string f = tmp("kf.simplemap");
   ASSERT_TRUE(sm.saveToFile(f));
-  auto src = mc::makePoseSource(f);
+  mc::PoseSourceOptions no_ego;  // --labels: no ego-motion to bridge keyframes with
+  no_ego.ego_available = false;
+  auto src = mc::makePoseSource(f, no_ego);
   auto s0 = scanAt(0, 500000000);  // before the first keyframe
   expectError([&] { src->pose(s0, {}); }, {"kf.simplemap", "scan 0"});
   auto s1 = scanAt(1, 1000000000);
@@ -139,4 +141,47 @@ TEST(PoseSource, SimplemapKeyframesAndOdometryBridging) {
   expectError([&] { src->pose(s4, {}); }, {"fewer than the scans", "scan 4"});
   s4.odometry = shift(110, 0);  // with odometry: placed from the last keyframe it saw (t = 1 s)
   EXPECT_TRUE(src->pose(s4, {}).translation().isApprox(Eigen::Vector3d(20, 0, 0.5)));
+
+  // A rawlog without odometry (icp-slam on an imported recording): between keyframes, the
+  // detector's ego-motion since the last one places the scan, and describe() says so.
+  auto ego_src = mc::makePoseSource(f);
+  EXPECT_TRUE(
+      ego_src->pose(scanAt(1, 1000000000), {}).translation().isApprox(Eigen::Vector3d(10, 0, 0.5)));
+  dynobj::core::EgoMotion step;
+  step.motion = shift(0.5, 0);
+  EXPECT_EQ(ego_src->describe().find("ego-motion"), std::string::npos);
+  ego_src->pose(scanAt(2, 1200000000), step);
+  EXPECT_TRUE(ego_src->pose(scanAt(3, 1400000000), step)
+                  .translation()
+                  .isApprox(Eigen::Vector3d(11, 0, 0.5)));
+  EXPECT_NE(ego_src->describe().find("ego-motion between keyframes"), std::string::npos);
+}
+
+TEST(PoseSource, AutoPicksOdometryElseViewpointElseEgoAndSaysWhy) {
+  const dynobj::core::EgoMotion ego;
+  auto with_odometry = mc::makePoseSource("auto");
+  EXPECT_EQ(with_odometry->describe(), "automatic");
+  auto s = scanAt(0, 1000000000);
+  s.odometry = shift(3, 0);
+  EXPECT_TRUE(with_odometry->pose(s, ego).translation().isApprox(Eigen::Vector3d(3, 0, 0.5)));
+  EXPECT_EQ(with_odometry->describe(), "rawlog odometry (chosen: the rawlog has odometry)");
+
+  auto with_viewpoint = mc::makePoseSource("auto");
+  auto v = scanAt(0, 1000000000);
+  v.viewpoint = shift(7, 0);
+  EXPECT_TRUE(with_viewpoint->pose(v, ego).translation().isApprox(Eigen::Vector3d(7, 0, 0)));
+  EXPECT_EQ(with_viewpoint->describe(),
+            "PCD VIEWPOINT (chosen: the input has a VIEWPOINT per scan)");
+
+  auto bare = mc::makePoseSource("auto");
+  EXPECT_TRUE(bare->pose(scanAt(0, 1000000000), ego)
+                  .translation()
+                  .isApprox(Eigen::Vector3d(0, 0, 0.5)));  // the first scan at its mount
+  EXPECT_EQ(bare->describe(), "detector ego-motion (chosen: the input has no odometry)");
+
+  mc::PoseSourceOptions no_ego;
+  no_ego.ego_available = false;
+  auto labels_only = mc::makePoseSource("auto", no_ego);
+  expectError([&] { labels_only->pose(scanAt(0, 1000000000), ego); },
+              {"no odometry", "scan 0", "--labels", "--poses"});
 }

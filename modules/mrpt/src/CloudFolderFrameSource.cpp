@@ -67,7 +67,7 @@ bool CloudFolderFrameSource::next(Frame& f) {
   for (float& v : cloud.intensity) v = static_cast<float>(v * scale_);
   core::RowSource source{};
   try {
-    f.stats = core::projectUnordered(cloud, hint_, f.frame, &source);
+    f.stats = core::projectUnordered(cloud, hint_, f.frame, &source, &lasers_);
   } catch (const std::invalid_argument& e) {
     throw io::FormatError(folder_.path(k) + ": " + e.what() + "; give --sensor");
   }

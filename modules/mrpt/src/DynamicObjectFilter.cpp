@@ -40,7 +40,29 @@ FilterSummary& FilterSummary::operator+=(const FilterSummary& o) {
   passed_through += o.passed_through;
   for (const auto& [msg, n] : o.warnings) warnings[msg] += n;
   detector_ms += o.detector_ms;
+  for (const auto& [what, n] : o.seen) seen[what] += n;
   return *this;
+}
+
+void FilterSummary::see(const mobs::CObservation& obs) {
+  seen["'" + obs.sensorLabel + "' (" + obs.GetRuntimeClass()->className + ")"]++;
+}
+
+std::string FilterSummary::nothingFiltered(const std::string& sensor_label) const {
+  std::string found;
+  for (const auto& [what, n] : seen)
+    found += (found.empty() ? "" : ", ") + what + " x" + std::to_string(n);
+  std::string why;
+  for (const auto& [msg, n] : warnings)
+    why += (why.empty() ? "" : "; ") + msg + " (" + std::to_string(n) + "x)";
+  return "no LiDAR frame was filtered" +
+         (sensor_label.empty() ? std::string() : " with sensor label '" + sensor_label + "'") +
+         ": found " + (found.empty() ? "no observation" : found) +
+         (why.empty() ? std::string()
+                      : "; " + std::to_string(passed_through) + " LiDAR observations passed " +
+                            "through: " + why) +
+         " (check --sensor-label and --sensor; --allow-none when a run that filters nothing is "
+         "expected)";
 }
 
 DynamicObjectFilter::DynamicObjectFilter(Options opts)
@@ -88,6 +110,7 @@ const core::DetectionResult* DynamicObjectFilter::filter(
 const core::DetectionResult* DynamicObjectFilter::detect(const mobs::CObservation::Ptr& obs,
                                                          PreconvertedFrame* pre) {
   summary_.observations++;
+  if (obs) summary_.see(*obs);
   if (!obs || !handles(*obs)) return nullptr;  // not a LiDAR observation (or not the chosen one)
   const detail::ObservationClass* cls = detail::findObservationClass(*obs);
   const std::string mode = toString(opts_.mode);

@@ -89,14 +89,16 @@ RawlogFilterSummary filterRawlog(const std::string& input, const std::string& ou
       if (labels) labels->write(obs.sensorLabel, r);
     };
   detail::EntryWriter writer(o, out, on_result);
-  FilterSummary detected = threads > 1 ? detail::detectPipelined(reader, writer, o, threads)
-                                       : detectSerial(reader, writer, o);
+  FilterSummary total = threads > 1 ? detail::detectPipelined(reader, writer, o, threads)
+                                    : detectSerial(reader, writer, o);
   writer.finish();
+  total += writer.tagging();
+  if (total.lidar == 0 && !o.allow_none)  // nothing written: the .partial is removed
+    throw std::runtime_error("'" + input + "': " + total.nothingFiltered(o.filter.sensor_label));
   out.commit();
   if (labels) labels->close();
   if (tracks) tracks->close();
-  const RawlogFilterSummary summary{reader.entriesRead(), detected += writer.tagging()};
-  return summary;
+  return {reader.entriesRead(), total};
 }
 
 }  // namespace dynobj::mrptio

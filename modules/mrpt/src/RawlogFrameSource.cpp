@@ -22,6 +22,13 @@ void RawlogFrameSource::rewind() {
   odometry_.reset();
 }
 
+std::string RawlogFrameSource::noFramesDetail() const {
+  std::string seen;
+  for (const auto& [label, cls] : labels_) seen += " '" + label + "' (" + cls + ")";
+  return (opts_.sensor_label.empty() ? "" : " with sensor label '" + opts_.sensor_label + "'") +
+         std::string("; labels seen:") + (seen.empty() ? " none" : seen);
+}
+
 bool RawlogFrameSource::next(Frame& f) {
   for (;;) {
     while (pending_pos_ < pending_.size()) {

@@ -102,6 +102,7 @@ class Pipeline {
     // no lane saw were counted by the reader thread.
     FilterSummary total;
     total.observations = unrouted_observations_;
+    total.seen = unrouted_seen_.seen;
     for (const auto& lane : lanes_) total += lane->filter.summary();
     return total;
   }
@@ -162,8 +163,10 @@ class Pipeline {
               routing_filter_.preconvert(*obs, *job->tasks[i].pre);
             }
             routed.emplace_back(&laneOf(obs->sensorLabel), i);
-          } else
+          } else {
             job->tasks[i].delta.observations = 1;  // not a LiDAR one: only counted
+            if (obs) unrouted_seen_.see(*obs);
+          }
         }
         unrouted_observations_ += job->tasks.size() - routed.size();
       }
@@ -224,6 +227,7 @@ class Pipeline {
   std::vector<std::unique_ptr<Lane>> lanes_;  // created and looked up by the reader thread
   std::map<std::string, std::size_t> lane_of_label_;
   std::size_t unrouted_observations_ = 0;  // reader thread; read after it is joined
+  FilterSummary unrouted_seen_;            // reader thread: the observations no lane saw
   std::mutex spare_m_;
   std::vector<std::unique_ptr<PreconvertedFrame>> spare_frames_;  // at most the jobs in flight
   std::thread reader_thread_;

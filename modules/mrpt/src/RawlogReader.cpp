@@ -6,6 +6,7 @@
 #include <mrpt/system/filesystem.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "SerializedObjectCheck.h"
 #include "dynobj/mrptio/GzipStream.h"
@@ -47,6 +48,10 @@ struct RawlogReader::Input {
 };
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
+  if (std::filesystem::is_directory(path))
+    throw RawlogError("'" + path +
+                      "' is a folder, not a rawlog (a folder of .pcd / .bin sweeps: make a rawlog "
+                      "of it with dynobj-import)");
   if (!mrpt::system::fileExists(path)) throw RawlogError("rawlog '" + path + "' does not exist");
   if (mrpt::system::getFileSize(path) == 0) throw RawlogError("rawlog '" + path + "' is empty");
   auto file = std::make_unique<GzipInputStream>();  // gzip (one or several members) or plain

@@ -163,11 +163,7 @@ struct RawlogWriter::Impl {
 
 RawlogWriter::RawlogWriter(const std::string& path, int compress_level, unsigned threads) {
   GzipMemberEncoder check(compress_level);  // throws on a bad level, before the file exists
-  try {
-    impl_ = std::make_unique<Impl>(path, compress_level, threads);
-  } catch (const std::runtime_error&) {
-    throw std::runtime_error("cannot write '" + io::partialName(path) + "'");
-  }
+  impl_ = std::make_unique<Impl>(path, compress_level, threads);  // io::AtomicFile names the cause
 }
 
 RawlogWriter::~RawlogWriter() = default;

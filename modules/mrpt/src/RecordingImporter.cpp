@@ -14,8 +14,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "dynobj/mrptio/CloudFolderFrameSource.h"
 #include "dynobj/mrptio/RangeScanLayout.h"
@@ -77,14 +79,48 @@ class SweepWriter {
   std::vector<io::TimedPose> poses_;
 };
 
+/// Points of the sweeps so far against the --sensor preset's field of view.
+struct PresetFit {
+  std::size_t valid = 0, outside = 0;
+};
+
+/// Throws unless the --sensor preset fits sweep `file` (and the sweeps before it, `fit`): no more
+/// lasers in the data than rows in the preset, and at most o.max_outside_fov of the valid points
+/// outside its field of view.
+void checkPresetFits(const ImportOptions& o, const std::string& file, int lasers,
+                     const core::ProjectionStats& st, PresetFit& fit) {
+  const core::SensorModel& m = *o.sensor;
+  const std::string preset = "the sensor preset '" + o.sensor_file + "' (" + m.model + ", " +
+                             std::to_string(m.rows) + " rows)";
+  if (lasers > m.rows)
+    throw std::runtime_error(preset + " does not fit the data: '" + file + "' holds " +
+                             std::to_string(lasers) + " lasers; give the preset of the sensor " +
+                             "that recorded it, or no --sensor (rows from the data)");
+  fit.valid += st.input_points - st.invalid;
+  fit.outside += st.outside_fov;
+  const double share = fit.valid ? static_cast<double>(fit.outside) / fit.valid : 0.0;
+  if (share > o.max_outside_fov) {
+    char pct[32];
+    std::snprintf(pct, sizeof(pct), "%.1f %%", 100.0 * share);
+    throw std::runtime_error(
+        preset + " does not fit the data: " + std::to_string(fit.outside) + " of the " +
+        std::to_string(fit.valid) + " valid points (" + pct + ") of the sweeps up to '" + file +
+        "' fall outside its field of " +
+        "view; give the preset of the sensor that recorded it, or no --sensor");
+  }
+}
+
 ImportSummary importFolder(const ImportOptions& o, const std::string& output,
                            const ImportProgress& progress) {
   CloudFolderFrameSource source(o.input, {o.times, o.rate, o.sensor, o.sensor_label});
   ImportSummary s;
   s.source = source.describe();
   SweepWriter writer(o, output, source.folder().size());
+  PresetFit fit;
   Frame f;
   while (source.next(f)) {
+    if (o.sensor)
+      checkPresetFits(o, source.folder().path(f.index), source.lastLasers(), f.stats, fit);
     writer.write(f.frame, f.stats, s);
     if (progress) progress(f.index + 1, source.folder().size());
   }

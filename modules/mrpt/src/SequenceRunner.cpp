@@ -77,7 +77,8 @@ std::size_t SequenceRunner::run(const std::function<void(const FrameResult&)>& o
   }
   held_.finish(release);  // the recording ends: each sensor's last frame revises once more
   if (n == 0 && opts_.require_frames)
-    throw std::runtime_error("no LiDAR observation in " + source_.describe());
+    throw std::runtime_error("no LiDAR observation in " + source_.describe() +
+                             source_.noFramesDetail());
   return n;
 }
 

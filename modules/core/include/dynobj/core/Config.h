@@ -30,6 +30,14 @@ void requirePositive(const std::string& key, double value);
 void requireOneOf(const std::string& key, const std::string& value,
                   const std::vector<std::string>& choices);
 
+/// Edits (insertions, deletions, substitutions, swaps of two neighbours) between `a` and `b`,
+/// ignoring case: the distance of a typo ("threshhold" -> "threshold": 1, "rnage" -> "range": 1).
+std::size_t editDistance(const std::string& a, const std::string& b);
+
+/// The name of `names` nearest to `word` when it is near enough to be what was meant (at most 2
+/// edits, and a third of its length rounded up), else "". For "did you mean ...?" messages.
+std::string closestName(const std::string& word, const std::vector<std::string>& names);
+
 // Readers. A missing key returns `def`, or throws when `required`. A present key whose value does
 // not parse completely (e.g. "12abc", "yes please") throws a ParameterError naming it.
 double readDouble(const ::mrpt::config::CConfigFileBase& cfg, const std::string& section,

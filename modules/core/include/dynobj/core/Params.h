@@ -7,6 +7,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <string>
+#include <vector>
 
 namespace dynobj::core {
 
@@ -27,6 +28,8 @@ struct StageParams : public ::mrpt::config::CLoadableOptions {
   virtual void visit(ParamVisitor& v) = 0;
   /// Throws ParameterError("<key>: <problem>") for the first invalid value.
   virtual void validate() const = 0;
+  /// Its INI keys, in visit() order (what a strict INI reader accepts in its section).
+  std::vector<std::string> keys() const;
 
   /// Reads every key present in `section` (absent keys keep their value), then validate().
   void loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,

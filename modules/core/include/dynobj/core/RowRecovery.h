@@ -30,6 +30,7 @@ const char* toString(RowSource s);
 struct RecoveredRows {
   RowSource source = RowSource::NominalTable;
   SensorModel sensor;  ///< the rows found (beam_elevations = measured elevation per row)
+  int lasers = 0;      ///< lasers the data shows (rules 1-2: ring ids, firing order); 0 = unknown
 };
 
 /// Recovers the rows of `cloud` (see the file comment). `hint` gives what is known of the sensor:
@@ -40,9 +41,11 @@ struct RecoveredRows {
 /// rule applies and there is no hint.
 RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint);
 
-/// recoverRows(), then organize() or project() into `frame`. `source` (optional) receives the rule.
+/// recoverRows(), then organize() or project() into `frame`. `source` (optional) receives the rule,
+/// `lasers` (optional) RecoveredRows::lasers.
 ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorModel>& hint,
-                                 LidarFrame& frame, RowSource* source = nullptr);
+                                 LidarFrame& frame, RowSource* source = nullptr,
+                                 int* lasers = nullptr);
 
 /// Measured elevation [rad] of each group of points (group[i] < groups, e.g. a row or a laser
 /// id): the median over the group's far points (>= 15 m horizontally, where a laser's vertical

@@ -39,6 +39,8 @@ struct SensorModel : public ::mrpt::config::CLoadableOptions {
                         const std::string& section) const override;
   /// Throws ParameterError naming the first bad key.
   void validate() const;
+  /// The INI keys loadFromConfigFile() reads (what a strict reader accepts in a preset).
+  static const std::vector<std::string>& iniKeys();
 
   /// True when beams are evenly spaced (no table): rows follow Eq. (1) exactly.
   bool isUniform() const { return beam_elevations.empty(); }

@@ -57,6 +57,9 @@ class PartialPath {
 std::string partialName(const std::string& path);
 /// Renames "<path>.partial" to <path>, throwing on failure.
 void commitPartial(const std::string& path);
+/// "cannot write '<path>': <why>", why naming the real cause: the folder that does not exist, a
+/// path that is not a folder, a folder not writable, else `err` (an errno value) when set.
+std::string cannotWriteMessage(const std::string& path, int err = 0);
 /// Writes `content` through an AtomicFile in one go.
 void writeFileAtomically(const std::string& path, const std::string& content);
 

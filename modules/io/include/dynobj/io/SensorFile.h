@@ -9,7 +9,7 @@
 namespace dynobj::io {
 
 /// Loads and validates `section` of an INI file; throws core::ParameterError naming the file and
-/// the key.
+/// the key, also for a key or section a preset does not have (io::IniFile).
 core::SensorModel readSensorModel(const std::string& ini_path,
                                   const std::string& section = "sensor");
 

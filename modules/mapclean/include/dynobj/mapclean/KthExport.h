@@ -21,7 +21,8 @@ namespace dynobj::mapclean {
 
 class KthExporter {
  public:
-  KthExporter(std::string dir, bool with_ground_truth);
+  /// An existing `dir` is an error, unless `replace`: then close() replaces it.
+  KthExporter(std::string dir, bool with_ground_truth, bool replace = false);
   ~KthExporter();
   KthExporter(const KthExporter&) = delete;
   KthExporter& operator=(const KthExporter&) = delete;
@@ -39,6 +40,7 @@ class KthExporter {
   std::unique_ptr<PcdStreamWriter> gt_;
   std::size_t frames_ = 0, points_ = 0;
   bool closed_ = false;
+  bool replace_ = false;
 };
 
 }  // namespace dynobj::mapclean

@@ -26,9 +26,10 @@
 namespace dynobj::mapclean {
 
 struct MapCleanOptions {
-  std::string input;               ///< .rawlog or a KTH DynamicMap folder
-  std::string out_dir;             ///< created if missing
-  std::string poses = "odometry";  ///< PoseSource spec
+  std::string input;           ///< .rawlog or a KTH DynamicMap folder
+  std::string out_dir;         ///< created if missing
+  std::string poses = "auto";  ///< PoseSource spec ("auto": odometry, else viewpoint, else ego)
+  bool overwrite = false;      ///< replace earlier outputs in out_dir (else they are an error)
   PoseSourceOptions pose_options;
   ScanSourceOptions scan_options;
   core::DetectorParams detector;
@@ -68,7 +69,11 @@ using MapCleanProgress =
 /// What dynobj-mapclean prints: scans, pose source, map sizes, simplemap, export, metrics, time.
 std::string summaryText(const MapCleanSummary& summary, const MapCleanOptions& opts);
 
-/// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input.
+/// The files runMapClean() writes into opts.out_dir (and the KTH export folder).
+std::vector<std::string> outputFiles(const MapCleanOptions& opts);
+
+/// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input, and when an
+/// output exists already unless opts.overwrite.
 MapCleanSummary runMapClean(const MapCleanOptions& opts, const MapCleanProgress& progress = {});
 
 }  // namespace dynobj::mapclean

@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Where each scan is placed in the world (the sensor pose). Chosen by a spec string:
+//   "auto"            - by the first scan: "odometry" when the rawlog has odometry before it, else
+//                       "viewpoint" when it has a VIEWPOINT (PCD folders), else "ego"; describe()
+//                       says which, and why;
 //   "odometry"        - the rawlog's latest CObservationOdometry before the scan, composed with the
 //                       observation's sensor pose on the robot;
 //   "ego"             - the detector's own ego-motion, chained from the first scan (robot origin);
@@ -25,6 +28,7 @@ namespace dynobj::mapclean {
 struct PoseSourceOptions {
   double tolerance_s = 0.001;    ///< timestamp matching tolerance for TUM / simplemap [s]
   bool tum_robot_poses = false;  ///< TUM poses are robot poses (composed with the mount)
+  bool ego_available = true;     ///< the detector runs (ego-motion for "auto")
 };
 
 class PoseSource {

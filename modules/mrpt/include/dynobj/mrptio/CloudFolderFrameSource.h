@@ -40,6 +40,9 @@ class CloudFolderFrameSource final : public FrameSource {
   const io::CloudFolder& folder() const { return folder_; }
   /// How the rows of the sweeps read so far were found: rule -> sweeps.
   const std::map<core::RowSource, std::size_t>& rowSources() const { return row_sources_; }
+  /// Lasers found in the last sweep read (core::projectUnordered; 0 when the rows came from a
+  /// table), for checking a preset against the data.
+  int lastLasers() const { return lasers_; }
   /// The field that became the intensity and its scale ("'intensity' x 255"), after a sweep.
   const std::string& intensityDescription() const { return intensity_; }
 
@@ -52,6 +55,7 @@ class CloudFolderFrameSource final : public FrameSource {
   double scale_ = 0;  ///< intensity scale, decided on the first sweep
   std::string intensity_;
   std::map<core::RowSource, std::size_t> row_sources_;
+  int lasers_ = 0;
 };
 
 /// "firing order 153, estimated table 1": the rules of rowSources(), most used first.

@@ -40,9 +40,17 @@ struct FilterSummary {
   std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
   std::map<std::string, std::size_t> warnings;  ///< message -> count
   double detector_ms = 0;                       ///< total detector time
+  /// Every observation seen, by "'<label>' (<class>)" -> count: what a run that filtered nothing
+  /// found instead.
+  std::map<std::string, std::size_t> seen;
 
-  /// Adds the counts, times and warnings of `other`.
+  /// Adds the counts, times, warnings and observations seen of `other`.
   FilterSummary& operator+=(const FilterSummary& other);
+  /// Counts `obs` in `seen`.
+  void see(const mrpt::obs::CObservation& obs);
+  /// The error of a run that filtered no LiDAR frame (of `sensor_label`, when not empty): the
+  /// sensor labels and observation classes it found, and why LiDAR ones passed through.
+  std::string nothingFiltered(const std::string& sensor_label) const;
 };
 
 /// An observation converted ahead of filter(), by another thread (the pipelined rawlog filter

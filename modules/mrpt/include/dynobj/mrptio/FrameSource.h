@@ -41,6 +41,9 @@ class FrameSource {
   /// Starts again from the first frame (multi-pass users such as map cleaning).
   virtual void rewind() = 0;
   virtual std::string describe() const = 0;
+  /// After a pass that gave no frame: what the source holds instead (e.g. " with label 'X';
+  /// labels seen: ..."), appended to "no LiDAR observation in <describe()>". Default: nothing.
+  virtual std::string noFramesDetail() const { return {}; }
 };
 
 }  // namespace dynobj::mrptio

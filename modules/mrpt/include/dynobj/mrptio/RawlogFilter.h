@@ -29,6 +29,9 @@ struct RawlogFilterOptions {
   bool overwrite = false;     ///< replace an existing output (never the input itself)
   int compression_level = 1;  ///< output: 0 = plain rawlog, 1 (fastest) .. 3 gzip
   unsigned threads = 0;       ///< 1 = read, detect, write one after another; 0 = one per core
+  /// A run that filtered no LiDAR frame (none there, another --sensor-label, frames that do not fit
+  /// --sensor) is an error naming what it found, and writes nothing; true: a copy, exit 0.
+  bool allow_none = false;
   /// Called after each entry with (entries done, the filter's summary so far). With threads > 1
   /// it is called from the calling thread, in entry order.
   std::function<void(std::size_t, const FilterSummary&)> progress;
@@ -43,7 +46,8 @@ struct RawlogFilterSummary {
 };
 
 /// Throws RawlogError (damaged input), core::ParameterError, std::runtime_error (output exists,
-/// is the input, cannot be written; --labels-out with several LiDARs).
+/// is the input, cannot be written; --labels-out with several LiDARs; no LiDAR frame filtered
+/// without allow_none).
 RawlogFilterSummary filterRawlog(const std::string& input, const std::string& output,
                                  const RawlogFilterOptions& opts);
 

@@ -33,6 +33,8 @@ class RawlogFrameSource : public FrameSource {
   bool next(Frame& f) override;
   void rewind() override;
   std::string describe() const override { return "rawlog '" + path_ + "'"; }
+  /// The --sensor-label asked for, and every label seen with its observation class.
+  std::string noFramesDetail() const override;
 
   /// Every sensor label met so far, with its observation class (for "no such label" messages).
   const std::map<std::string, std::string>& labelsSeen() const { return labels_; }

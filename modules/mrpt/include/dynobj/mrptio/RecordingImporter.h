@@ -22,6 +22,11 @@ struct ImportOptions {
   std::string times;  ///< folder: times file (see io::CloudFolder); empty = `rate`
   std::string poses;  ///< KITTI 3x4 or TUM file, one pose per sweep (or by time for TUM)
   std::optional<core::SensorModel> sensor;  ///< point clouds: rows/cols hint (else recovered)
+  std::string sensor_file;                  ///< where `sensor` came from, for messages
+  /// With `sensor`: it must fit the data, else the import fails naming both: no sweep may show
+  /// more lasers than it has rows, and at most this share of the valid points may fall outside
+  /// its vertical field of view.
+  double max_outside_fov = 0.05;
   std::string sensor_label = "LIDAR";
   double rate = 10.0;  ///< [Hz] sweep rate of a folder without a times file
 };
@@ -29,7 +34,9 @@ struct ImportOptions {
 struct ImportSummary {
   std::size_t sweeps = 0, points = 0, pixels = 0, hidden = 0, outside_fov = 0, invalid = 0;
   int rows = 0, cols = 0;
-  std::string rows_from;     ///< how the rows were found (core::toString(RowSource), "metadata")
+  /// how the rows were found: sweeps per rule ("firing order 153, estimated beam table 1"), or
+  /// "metadata beam table"
+  std::string rows_from;
   std::string intensity;     ///< the field that became the intensity layer, and its scale
   std::size_t odometry = 0;  ///< CObservationOdometry written
   std::string source;        ///< what was read, for messages
