@@ -18,6 +18,7 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("split_match_radius", split_match_radius);
   v.value("split_rest_majority", split_rest_majority);
   v.value("split_hold_back", split_hold_back);
+  v.value("movers_first", movers_first);
 }
 
 void AssociationParams::validate() const {
@@ -124,6 +125,59 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
     r0 = r1;
     c0 = c1;
   }
+  return out;
+}
+
+}  // namespace dynobj::core
+
+namespace dynobj::core {
+
+std::vector<int> ClusterAssociator::associateMoversFirst(
+    const std::vector<Eigen::Vector3d>& current, const std::vector<Eigen::Vector3d>& predicted,
+    const std::vector<double>& gates, const std::vector<char>& first) const {
+  if (!p_.movers_first || std::find(first.begin(), first.end(), 1) == first.end())
+    return associate(current, predicted, gates);
+  if (first.size() != predicted.size() || gates.size() != predicted.size())
+    throw std::invalid_argument("ClusterAssociator: one gate and one flag per predicted track");
+  // Round 1: the movers, with every cluster within half their gate (the mover's own cluster,
+  // near where it was predicted; not an object beside it when its own is missing).
+  std::vector<Eigen::Vector3d> movers;
+  std::vector<double> half_gates;
+  std::vector<std::size_t> mover_index;
+  for (std::size_t n = 0; n < predicted.size(); n++)
+    if (first[n]) {
+      movers.push_back(predicted[n]);
+      half_gates.push_back(gates[n] / 2);
+      mover_index.push_back(n);
+    }
+  std::vector<int> out = associate(current, movers, half_gates);
+  std::vector<char> matched(predicted.size(), 0);
+  std::vector<Eigen::Vector3d> left;
+  std::vector<std::size_t> left_index;
+  for (std::size_t m = 0; m < out.size(); m++) {
+    if (out[m] >= 0) {
+      const std::size_t n = mover_index[static_cast<std::size_t>(out[m])];
+      out[m] = static_cast<int>(n);
+      matched[n] = 1;
+    } else {
+      left.push_back(current[m]);
+      left_index.push_back(m);
+    }
+  }
+  // Round 2: every other track (the movers round 1 left too) with the clusters left.
+  std::vector<Eigen::Vector3d> rest;
+  std::vector<double> rest_gates;
+  std::vector<std::size_t> rest_index;
+  for (std::size_t n = 0; n < predicted.size(); n++)
+    if (!matched[n]) {
+      rest.push_back(predicted[n]);
+      rest_gates.push_back(gates[n]);
+      rest_index.push_back(n);
+    }
+  const std::vector<int> second = associate(left, rest, rest_gates);
+  for (std::size_t i = 0; i < second.size(); i++)
+    if (second[i] >= 0)
+      out[left_index[i]] = static_cast<int>(rest_index[static_cast<std::size_t>(second[i])]);
   return out;
 }
 

@@ -208,8 +208,11 @@ const DetectionResult& DynamicObjectDetector::process(
                         ? associator_.gate((t.missed + 1) * dt, (seen.end_b - seen.end_a).norm())
                         : associator_.gate(0, 0));
   }
+  std::vector<char> movers;  // beyond the paper: the tracks moving at the last sweep go first
+  movers.reserve(predicted.size());
+  for (const Track& t : tracks_.tracks()) movers.push_back(t.dynamic && t.missed == 0);
   std::vector<int> cluster_to_track =
-      associator_.associate(centroidsOf(clusters_), predicted, gates);
+      associator_.associateMoversFirst(centroidsOf(clusters_), predicted, gates, movers);
   // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
   held_.clear();
   const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
