@@ -1,23 +1,23 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Regenerates the accuracy tables of docs/accuracy.md. Each section writes one Markdown file in
+# Regenerates the accuracy tables (docs/accuracy.md). Each option writes one Markdown file in
 # out/accuracy/ (override: DYNOBJ_ACCURACY_OUT) headed by the commands that made it:
 #   scripts/accuracy.sh [scenario ...]  Table I: simulates each shipped scenario (300 sweeps, its own
 #                                       seed), runs this detector (own intensity ego-motion,
 #                                       ground-truth ego-motion, drifting odometry) and MRPT's
 #                                       CPointCloudFilterByDistance: accuracy.md + one report each
-#   scripts/accuracy.sh --ablations     "What each part contributes": hall, one key changed at a time
-#   scripts/accuracy.sh --seeds         "Sensitivity to the RANSAC seed": [ego_motion] seed 1-3
+#   scripts/accuracy.sh --ablations     hall, one key changed at a time
+#   scripts/accuracy.sh --seeds         the RANSAC seed's effect: [ego_motion] seed 1-3
 #   scripts/accuracy.sh --os0-128       hall at 128 x 2048, defaults vs the OS0-128 preset INI
-#   scripts/accuracy.sh --quick-matrix  "Quick matrix": seeds the defaults were never tuned on
+#   scripts/accuracy.sh --quick-matrix  23 cells of 100 sweeps: seeds the defaults were never tuned on
 #   scripts/accuracy.sh --held-out      the same on seed 201 (+ six other sensor cells): checked only
 #                                       after a change was chosen on the quick matrix
-#   scripts/accuracy.sh --ego-error     Session 5's ego-motion error against the simulator's true
+#   scripts/accuracy.sh --ego-error     the ego-motion error against the simulator's true
 #                                       poses, with and without [ego_refinement]
-#   scripts/accuracy.sh --realdata      "Real HDL-64 streets, no labels": label-free consistency and
+#   scripts/accuracy.sh --realdata      real HDL-64 streets without labels: label-free consistency and
 #                                       ICP agreement on ../shared/realdata/kitti-hdl64-city-22 and,
 #                                       when DYNOBJ_DATA2 names it, the 154-sweep data_2 folder
-#   scripts/accuracy.sh --real          "Real recordings, human labels": data_2 (DYNOBJ_DATA2, the
+#   scripts/accuracy.sh --real          real recordings, human labels: data_2 (DYNOBJ_DATA2, the
 #                                       154-sweep folder) against KITTI's boxes
 #                                       (../shared/realdata/kitti-tracking-0000), online and offline,
 #                                       per class; then --realdata. Skips clearly without the data.
@@ -88,13 +88,13 @@ ABLATIONS=(
   "online, no hindsight (\`[hindsight] lag = 0\`: the paper; what the per-observation filters give)|[hindsight]\nlag = 0\n"
   "hindsight trusts a track at its first dynamic sweep (\`min_dynamic = 0\`)|[hindsight]\nmin_dynamic = 0\n"
   "hindsight without the merge test (\`max_growth = 100\`)|[hindsight]\nmax_growth = 100\n"
-  "hindsight on the average speed to the confirming sweep (\`speed_window = 0\`) — before Session 13|[hindsight]\nspeed_window = 0\n"
-  "hindsight flags the last sweep before a start too (\`start_check = false\`) — before Session 14|[hindsight]\nstart_check = false\n"
-  "region growing may take objects at rest (\`[region_growing] keep_out_settled = false\`) — before Session 14|[region_growing]\nkeep_out_settled = false\n"
-  "the refinement's own translation in every direction (\`[ego_refinement] degenerate_share = 0\`) — before Session 14|[ego_refinement]\ndegenerate_share = 0\n"
+  "hindsight on the average speed to the confirming sweep (\`speed_window = 0\`)|[hindsight]\nspeed_window = 0\n"
+  "hindsight flags the last sweep before a start too (\`start_check = false\`)|[hindsight]\nstart_check = false\n"
+  "region growing may take objects at rest (\`[region_growing] keep_out_settled = false\`)|[region_growing]\nkeep_out_settled = false\n"
+  "the refinement's own translation in every direction (\`[ego_refinement] degenerate_share = 0\`)|[ego_refinement]\ndegenerate_share = 0\n"
   "paper's one-sided foreground \`B(f − h, θ)\` (\`absolute = false\`)|[foreground]\nabsolute = false\n"
   "no free-space check (\`[free_space] enabled = false\`; rigid movers can then never prove their motion)|[free_space]\nenabled = false\n"
-  "free space from the point's own row only (\`side_rows = 0\`) — before Session 13|[free_space]\nside_rows = 0\n"
+  "free space from the point's own row only (\`side_rows = 0\`)|[free_space]\nside_rows = 0\n"
   "no hysteresis|[tracking]\nhysteresis = false\n"
   "no Kalman prediction (the paper's Eq. 8 only, no coasting)|[tracking]\nprediction = false\n"
   "Eq. (23) as the paper: every cluster, no rigid-mover or viewpoint exemption (\`rigid_tolerance = 0\`, \`long_object_ego_ratio = 0\`)|[movement]\nrigid_tolerance = 0\nlong_object_ego_ratio = 0\n"
@@ -107,28 +107,28 @@ ABLATIONS=(
   "every feature in the search (no 17 cm voxel reduction)|[clustering]\nvoxel = 0\n"
   "faster ego-motion: 400 ORB features, FAST threshold 20|[ego_motion]\nfeatures = 400\nfast_threshold = 20\n"
   "RANSAC: 200 fixed samples, no refits (the previous default)|[ego_motion]\nconfidence = 1\nrefinements = 0\n"
-  "no split of a cluster holding a mover and an object at rest (\`[association] split_radius = 0\`) — before Session 20|[association]\nsplit_radius = 0\n"
-  "a sliding rigid cluster needs no more free space than any other (\`[free_space] slide_free_ratio = 0\`) — before Session 20|[free_space]\nslide_free_ratio = 0\n"
-  "hindsight's stop check on the quarter rule only (\`[hindsight] rest_speed = 0\`) — before Session 21|[hindsight]\nrest_speed = 0\n"
-  "region growing may take what the lookback frame saw (\`[region_growing] past_surface_check = false\`) — before Session 21|[region_growing]\npast_surface_check = false\n"
+  "no split of a cluster holding a mover and an object at rest (\`[association] split_radius = 0\`)|[association]\nsplit_radius = 0\n"
+  "a sliding rigid cluster needs no more free space than any other (\`[free_space] slide_free_ratio = 0\`)|[free_space]\nslide_free_ratio = 0\n"
+  "hindsight's stop check on the quarter rule only (\`[hindsight] rest_speed = 0\`)|[hindsight]\nrest_speed = 0\n"
+  "region growing may take what the lookback frame saw (\`[region_growing] past_surface_check = false\`)|[region_growing]\npast_surface_check = false\n"
   "3-D centroid steps, as the paper (\`[movement] planar = false\`)|[movement]\nplanar = false\n"
-  "3-D centroid steps and ε_d = 0.25 m (\`planar = false\`, \`min_displacement = 0.25\`) — before Session 22|[movement]\nplanar = false\nmin_displacement = 0.25\n"
-  "a track starts from 4 features (\`[clustering] min_points = 4\`) — before Session 22|[clustering]\nmin_points = 4\n"
-  "the ground beside a point counts against it however high the point (\`[free_space] clearance = 100\`) — before Session 23|[free_space]\nclearance = 100\n"
-  "no older frame for a slow candidate (\`[free_space] max_lookback = 0\`) — before Session 23|[free_space]\nmax_lookback = 0\n"
-  "no set-back top for wide objects (\`[region_growing] slope_factor = 0\`) — before Session 24|[region_growing]\nslope_factor = 0\n"
-  "earlier sweeps grown over what the newest held frame still sees (\`[hindsight] later_surface_check = false\`) — before Session 24|[hindsight]\nlater_surface_check = false\n"
-  "a rigid mover's own past body counted as occupied (\`[free_space] exclude_own_past = false\`) — before Session 25|[free_space]\nexclude_own_past = false\n"
-  "a thin surface seen through in the past frame alone is free space (\`[free_space] thin_frames = 0\`) — before Session 26|[free_space]\nthin_frames = 0\n"
-  "hindsight counts the whole way from an earlier sweep, sideways too (\`[hindsight] way_along = false\`) — before Session 26|[hindsight]\nway_along = false\n"
-  "hindsight asks the newest frame only of grown points, once the object went farther than its extent (\`[hindsight] later_surface_points = false\`) — before Session 27|[hindsight]\nlater_surface_points = false\n"
-  "a mover's part under split_min_share is never split off, and a mover's cluster that is mostly one at rest stays the mover's (\`[association] split_match_radius = 0\`, \`split_rest_majority = false\`) — before Session 27|[association]\nsplit_match_radius = 0\nsplit_rest_majority = false\n"
-  "a mover's region takes the body of one at rest beside it, all but its features (\`[region_growing] nearer_rest_radius = 0\`) — before Session 27|[region_growing]\nnearer_rest_radius = 0\n"
-  "a long cluster is a rigid mover only when its ends moved with its centroid (\`[movement] rigid_ends_length = 0\`) — before Session 28|[movement]\nrigid_ends_length = 0\n"
-  "a mover that clearly stopped is at rest only once settled, 10 sweeps later (\`[tracking] stop_at_rest = false\`) — before Session 28|[tracking]\nstop_at_rest = false\n"
-  "hindsight fills no sweep where a dynamic track was not seen between two sightings (\`[hindsight] fill_gaps = false\`) — before Session 29|[hindsight]\nfill_gaps = false\n"
-  "hindsight fills no sweep before a trusted track was first seen (\`[hindsight] fill_before = false\`) — before Session 29|[hindsight]\nfill_before = false\n"
-  "a mover's cluster that is not split keeps the fair part of one at rest in it, flagged (\`[association] split_hold_back = false\`) — before Session 30|[association]\nsplit_hold_back = false\n"
+  "3-D centroid steps and ε_d = 0.25 m (\`planar = false\`, \`min_displacement = 0.25\`)|[movement]\nplanar = false\nmin_displacement = 0.25\n"
+  "a track starts from 4 features (\`[clustering] min_points = 4\`)|[clustering]\nmin_points = 4\n"
+  "the ground beside a point counts against it however high the point (\`[free_space] clearance = 100\`)|[free_space]\nclearance = 100\n"
+  "no older frame for a slow candidate (\`[free_space] max_lookback = 0\`)|[free_space]\nmax_lookback = 0\n"
+  "no set-back top for wide objects (\`[region_growing] slope_factor = 0\`)|[region_growing]\nslope_factor = 0\n"
+  "earlier sweeps grown over what the newest held frame still sees (\`[hindsight] later_surface_check = false\`)|[hindsight]\nlater_surface_check = false\n"
+  "a rigid mover's own past body counted as occupied (\`[free_space] exclude_own_past = false\`)|[free_space]\nexclude_own_past = false\n"
+  "a thin surface seen through in the past frame alone is free space (\`[free_space] thin_frames = 0\`)|[free_space]\nthin_frames = 0\n"
+  "hindsight counts the whole way from an earlier sweep, sideways too (\`[hindsight] way_along = false\`)|[hindsight]\nway_along = false\n"
+  "hindsight asks the newest frame only of grown points, once the object went farther than its extent (\`[hindsight] later_surface_points = false\`)|[hindsight]\nlater_surface_points = false\n"
+  "a mover's part under split_min_share is never split off, and a mover's cluster that is mostly one at rest stays the mover's (\`[association] split_match_radius = 0\`, \`split_rest_majority = false\`)|[association]\nsplit_match_radius = 0\nsplit_rest_majority = false\n"
+  "a mover's region takes the body of one at rest beside it, all but its features (\`[region_growing] nearer_rest_radius = 0\`)|[region_growing]\nnearer_rest_radius = 0\n"
+  "a long cluster is a rigid mover only when its ends moved with its centroid (\`[movement] rigid_ends_length = 0\`)|[movement]\nrigid_ends_length = 0\n"
+  "a mover that clearly stopped is at rest only once settled, 10 sweeps later (\`[tracking] stop_at_rest = false\`)|[tracking]\nstop_at_rest = false\n"
+  "hindsight fills no sweep where a dynamic track was not seen between two sightings (\`[hindsight] fill_gaps = false\`)|[hindsight]\nfill_gaps = false\n"
+  "hindsight fills no sweep before a trusted track was first seen (\`[hindsight] fill_before = false\`)|[hindsight]\nfill_before = false\n"
+  "a mover's cluster that is not split keeps the fair part of one at rest in it, flagged (\`[association] split_hold_back = false\`)|[association]\nsplit_hold_back = false\n"
 )
 ablations() {
   local dir="$OUT/ablations" md="$OUT/ablations.md" i=0 label ini
@@ -206,7 +206,7 @@ os0_128() {
   log "os0-128: ${md}"
 }
 
-# "Quick matrix": 100 sweeps per cell, seeds the defaults were never tuned on, a few presets.
+# The quick matrix: 100 sweeps per cell, seeds the defaults were never tuned on, a few presets.
 QUICK=("hall 101" "hall 102" "corridor 101" "corridor 102" "crossing 101" "crossing 102"
        "street 101" "street 102" "static 101" "hall 101 vlp-16" "hall 101 os0-128"
        "crossing 101 vlp-16" "crossing 101 hdl-32" "street 101 hdl-64" "street 101 vlp-16"

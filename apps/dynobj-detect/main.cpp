@@ -9,7 +9,7 @@
 #include <dynobj/io/LabelFile.h>
 #include <dynobj/io/Png.h>
 #include <dynobj/io/PoseFile.h>
-#include <dynobj/mrptio/RawlogFrameSource.h>
+#include <dynobj/mrptio/OpenFrameSource.h>
 #include <dynobj/mrptio/SequenceRunner.h>
 
 #include <cstdio>
@@ -22,7 +22,8 @@ namespace {
 
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-detect: detect dynamic points in a rawlog's LiDAR scans", ' ', "0.1");
-  TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog", true, "", "file.rawlog", cmd);
+  TCLAP::ValueArg<std::string> in("i", "input", "Input rawlog, or a folder of .pcd / .bin sweeps",
+                                  true, "", "input", cmd);
   const dynobj::apps::OutputArg out(cmd, "Write the detections (label file v1)", false,
                                     "file.labels", "labels-out");
   TCLAP::ValueArg<std::string> gt("", "gt",
@@ -81,8 +82,9 @@ int run(int argc, char** argv) {
       out.isSet() || consistency.isSet() || ego_truth.isSet() || poses_out.isSet();  // one sensor
   std::optional<dynobj::apps::OutputFolder> overlay_dir;
   if (overlays.isSet()) overlay_dir.emplace(overlays.getValue());
-  dynobj::mrptio::RawlogFrameSource source(in.getValue(), sensor.converter(),
-                                           {sensor.label(), 0, SIZE_MAX});
+  dynobj::mrptio::OpenedFrameSource opened =  // a rawlog, or a folder of PCD / .bin sweeps
+      dynobj::mrptio::openFrameSource(in.getValue(), sensor.model(), sensor.label());
+  dynobj::mrptio::FrameSource& source = *opened.source;
   std::optional<dynobj::eval::EgoMotionCheck> ego_check;
   if (check_ego.isSet()) ego_check.emplace();
   std::optional<dynobj::eval::MapConsistency> map_check;

@@ -68,7 +68,7 @@ int run(int argc, char** argv) {
                                  std::cerr << "[dynobj-label] " << entries << " entries, "
                                            << bytes / 1000000 << " MB\n";
                              });
-  label::LabelSession session(sweeps, params);
+  label::LabelEditor session(sweeps, params);
   std::cerr << "[dynobj-label] " << session.size() << " sweeps of '" << sweeps.sensorLabel()
             << "', " << session.rows() << "x" << session.cols() << "\n";
   if (!fresh.isSet() && std::filesystem::exists(base + ".instances")) {

@@ -37,7 +37,10 @@ int run(int argc, char** argv) {
   TCLAP::SwitchArg level(
       "", "level-poses",
       "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
-  TCLAP::SwitchArg single("", "single-pass", "No second pass: map on the fly (causal)", cmd);
+  TCLAP::SwitchArg single(
+      "", "single-pass",
+      "No second pass: map each sweep as soon as its detection is final (after the hindsight lag)",
+      cmd);
   dynobj::apps::SensorArgs sensor(cmd);
   TCLAP::ValueArg<std::string> labels(
       "", "labels",

@@ -53,9 +53,8 @@ int run(int argc, char** argv) {
                                      "(YAML: floor, static, actors, platform) to this file",
                                      false, "", "file.yaml", cmd);
   TCLAP::ValueArg<int> compression("", "compression",
-                                   "gzip level of the rawlog: 0 (fastest, largest) to 9 "
-                                   "(default 1)",
-                                   false, 1, "0-9", cmd);
+                                   "gzip level of the rawlog: 0 (plain, largest) to 3 (default 1)",
+                                   false, 1, "0-3", cmd);
   TCLAP::SwitchArg quiet("q", "quiet", "No progress output", cmd);
   if (const auto stop = dynobj::apps::parseCommandLine(cmd, argc, argv)) return *stop;
 

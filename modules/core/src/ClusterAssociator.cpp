@@ -2,6 +2,7 @@
 #include "dynobj/core/ClusterAssociator.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "dynobj/core/Config.h"
@@ -139,8 +140,9 @@ std::vector<int> ClusterAssociator::associateMoversFirst(
     return associate(current, predicted, gates);
   if (first.size() != predicted.size() || gates.size() != predicted.size())
     throw std::invalid_argument("ClusterAssociator: one gate and one flag per predicted track");
-  // Round 1: the movers, with every cluster within half their gate (the mover's own cluster,
-  // near where it was predicted; not an object beside it when its own is missing).
+  // Round 1: the movers, with the clusters whose nearest prediction of all is a mover's, within
+  // half its gate (the mover's own cluster, where it was predicted; not an object beside it, which
+  // lies nearer its own track, nor one farther off when the mover's own is missing).
   std::vector<Eigen::Vector3d> movers;
   std::vector<double> half_gates;
   std::vector<std::size_t> mover_index;
@@ -150,7 +152,24 @@ std::vector<int> ClusterAssociator::associateMoversFirst(
       half_gates.push_back(gates[n] / 2);
       mover_index.push_back(n);
     }
-  std::vector<int> out = associate(current, movers, half_gates);
+  std::vector<Eigen::Vector3d> near;  // the clusters of round 1
+  std::vector<std::size_t> near_index;
+  for (std::size_t m = 0; m < current.size(); m++) {
+    std::size_t best = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t n = 0; n < predicted.size(); n++) {
+      const double d2 = (current[m] - predicted[n]).squaredNorm();
+      if (d2 < best_d2) best_d2 = d2, best = n;
+    }
+    if (first[best] && best_d2 <= gates[best] * gates[best] / 4) {
+      near.push_back(current[m]);
+      near_index.push_back(m);
+    }
+  }
+  std::vector<int> out(current.size(), -1);
+  const std::vector<int> first_round = associate(near, movers, half_gates);
+  for (std::size_t i = 0; i < first_round.size(); i++)
+    if (first_round[i] >= 0) out[near_index[i]] = first_round[i];
   std::vector<char> matched(predicted.size(), 0);
   std::vector<Eigen::Vector3d> left;
   std::vector<std::size_t> left_index;

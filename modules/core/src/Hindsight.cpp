@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "dynobj/core/Config.h"
-#include "dynobj/core/DynamicObjectDetector.h"
+#include "dynobj/core/DetectionResult.h"
 
 namespace dynobj::core {
 namespace {

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dynobj/core/EgoMotionEstimator.h"
 #include "dynobj/core/Se3.h"
 
 namespace dynobj::core {

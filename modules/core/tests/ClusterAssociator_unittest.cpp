@@ -44,6 +44,16 @@ TEST(ClusterAssociator, AMoverWithoutItsClusterDoesNotTakeAnObjectBesideIt) {
   EXPECT_EQ(a.associateMoversFirst(clusters, {at(0, 0)}, {1.0}, {1}), (std::vector<int>{0}));
 }
 
+// In a crowd: a walker's own cluster is missing this sweep and someone standing 0.3 m from the
+// walker's prediction (within half its gate) keeps their cluster; that cluster lies nearer to the
+// standing person's own track, so the first round leaves it to the second, where it is theirs.
+TEST(ClusterAssociator, AMoverDoesNotTakeTheClusterOfSomeoneStandingBesideIt) {
+  const std::vector<Eigen::Vector3d> clusters{at(0.3, 0)};
+  const std::vector<Eigen::Vector3d> tracks{at(0, 0), at(0.32, 0)};  // 0 = walker, 1 = standing
+  ClusterAssociator a(AssociationParams{});
+  EXPECT_EQ(a.associateMoversFirst(clusters, tracks, {1.0, 1.0}, {1, 0}), (std::vector<int>{1}));
+}
+
 TEST(ClusterAssociator, WithoutMoversItIsTheOneAssignment) {
   const std::vector<Eigen::Vector3d> clusters{at(0, 0), at(3, 0), at(10, 0)};
   const std::vector<Eigen::Vector3d> tracks{at(2.9, 0), at(0.2, 0)};

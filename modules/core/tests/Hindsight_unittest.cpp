@@ -243,7 +243,7 @@ TEST(Hindsight, CountsTheWayAlongWhereTheTrackWentNotASidewaysDrift) {
   Hindsight(p).revise(along.held());
   EXPECT_TRUE(along.flagged(0).empty());
   for (std::size_t j = 1; j < 4; j++) EXPECT_EQ(along.flagged(j), along.post[j]) << "frame " << j;
-  p.way_along = false;  // the whole way, as before Session 26: 0.3 m, so frame 0 too
+  p.way_along = false;  // the whole way: 0.3 m, so frame 0 too
   Sequence drift(at, forward(0));
   Hindsight(p).revise(drift.held());
   for (std::size_t j = 0; j < 4; j++) EXPECT_EQ(drift.flagged(j), drift.post[j]) << "frame " << j;

@@ -417,7 +417,7 @@ TEST(MovementAnalyzer, ACarPassingCloseByMovesAsItsEndsNotAsItsCentroid) {
   EXPECT_FALSE(d.long_object);
   EXPECT_TRUE(d.moving());
   MovementParams off;
-  off.rigid_ends_length = 0;  // as before Session 28: the lagging centroid makes it a wall
+  off.rigid_ends_length = 0;  // off: the lagging centroid makes it a wall
   const auto d_off = MovementAnalyzer(off).analyse(passing(2.0), chain, car, 0.1);
   EXPECT_FALSE(d_off.rigid);
   EXPECT_TRUE(d_off.long_object);

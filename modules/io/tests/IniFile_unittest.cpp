@@ -126,7 +126,7 @@ TEST(IniFile, EveryShippedFilePassesItsReader) {
     f.expect("sensor", dynobj::core::SensorModel::iniKeys());
     EXPECT_EQ(problems(f), "");
   }
-  for (const char* name : {"dynobj.ini", "dynobj-os0-128-2048.ini"}) {
+  for (const char* name : {"dynobj.ini", "advanced.ini", "dynobj-os0-128-2048.ini"}) {
     IniFile f(share + "/config/" + name);
     f.expectDetector();
     EXPECT_EQ(problems(f), "") << name;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/label/LabelSession.h"
+#include "dynobj/label/LabelEditor.h"
 
 #include <dynobj/core/Config.h>
 #include <dynobj/core/FrameImages.h>
@@ -90,7 +90,7 @@ LabelState labelStateFromString(const std::string& s) {
   throw LabelError("unknown label state '" + s + "' (confirmed, proposed, prelabel)");
 }
 
-LabelSession::LabelSession(SweepSource& source, const LabelParams& params)
+LabelEditor::LabelEditor(SweepSource& source, const LabelParams& params)
     : source_(source), p_(params), ground_(params.ground) {
   p_.validate();
   if (source_.size() == 0) throw LabelError(source_.describe() + " has no sweep");
@@ -106,7 +106,7 @@ LabelSession::LabelSession(SweepSource& source, const LabelParams& params)
   labels_.resize(source_.size());
 }
 
-std::shared_ptr<const LoadedSweep> LabelSession::sweep(std::size_t k) {
+std::shared_ptr<const LoadedSweep> LabelEditor::sweep(std::size_t k) {
   if (k >= size())
     throw LabelError("sweep " + std::to_string(k) + " does not exist (there are " +
                      std::to_string(size()) + ")");
@@ -131,7 +131,7 @@ std::shared_ptr<const LoadedSweep> LabelSession::sweep(std::size_t k) {
   return s;
 }
 
-cv::Mat_<std::uint8_t> LabelSession::others(std::size_t k, int except_id) const {
+cv::Mat_<std::uint8_t> LabelEditor::others(std::size_t k, int except_id) const {
   cv::Mat_<std::uint8_t> b(rows_, cols_, std::uint8_t{0});
   for (const auto& o : labels_[k].objects) {
     if (o.id == except_id) continue;
@@ -141,8 +141,8 @@ cv::Mat_<std::uint8_t> LabelSession::others(std::size_t k, int except_id) const 
   return b;
 }
 
-std::vector<std::uint32_t> LabelSession::grow(std::size_t k, int row, int col, int id,
-                                              double distance, double max_extent) {
+std::vector<std::uint32_t> LabelEditor::grow(std::size_t k, int row, int col, int id,
+                                             double distance, double max_extent) {
   const auto s = sweep(k);
   if (row < 0 || row >= rows_ || col < 0 || col >= cols_)
     throw LabelError("pixel (" + std::to_string(row) + ", " + std::to_string(col) +
@@ -179,21 +179,21 @@ std::vector<std::uint32_t> LabelSession::grow(std::size_t k, int row, int col, i
   return io::pixelsOfMask(mask);
 }
 
-SweepLabels& LabelSession::mutableLabels(std::size_t k) {
+SweepLabels& LabelEditor::mutableLabels(std::size_t k) {
   if (k >= size())
     throw LabelError("sweep " + std::to_string(k) + " does not exist (there are " +
                      std::to_string(size()) + ")");
   return labels_[k];
 }
 
-const ObjectLabel* LabelSession::object(std::size_t k, int id) const {
+const ObjectLabel* LabelEditor::object(std::size_t k, int id) const {
   for (const auto& o : labels_.at(k).objects)
     if (o.id == id) return &o;
   return nullptr;
 }
 
-void LabelSession::setObject(std::size_t k, int id, std::vector<std::uint32_t> pixels,
-                             LabelState state) {
+void LabelEditor::setObject(std::size_t k, int id, std::vector<std::uint32_t> pixels,
+                            LabelState state) {
   SweepLabels& sl = mutableLabels(k);
   if (id <= 0) throw LabelError("object ids start at 1 (got " + std::to_string(id) + ")");
   std::sort(pixels.begin(), pixels.end());
@@ -228,14 +228,14 @@ void LabelSession::setObject(std::size_t k, int id, std::vector<std::uint32_t> p
   revision_++;
 }
 
-int LabelSession::newObject(const std::string& cls, bool moving) {
+int LabelEditor::newObject(const std::string& cls, bool moving) {
   const int id = next_id_++;
   info_[id] = ObjectInfo{id, cls, moving};
   revision_++;
   return id;
 }
 
-void LabelSession::setObjectInfo(const ObjectInfo& info) {
+void LabelEditor::setObjectInfo(const ObjectInfo& info) {
   if (info.id <= 0) throw LabelError("object ids start at 1");
   if (info.cls.empty() || info.cls.find_first_of("\n\r\"\\") != std::string::npos)
     throw LabelError("object class '" + info.cls + "' must be one line of plain text");
@@ -244,7 +244,7 @@ void LabelSession::setObjectInfo(const ObjectInfo& info) {
   revision_++;
 }
 
-Eigen::Isometry3d LabelSession::motion(std::size_t from, std::size_t to, std::string& source) {
+Eigen::Isometry3d LabelEditor::motion(std::size_t from, std::size_t to, std::string& source) {
   const auto a = sweep(from), b = sweep(to);
   if (a->pose && b->pose) {
     source = "odometry";
@@ -271,7 +271,7 @@ Eigen::Isometry3d LabelSession::motion(std::size_t from, std::size_t to, std::st
   return Eigen::Isometry3d::Identity();
 }
 
-Propagation LabelSession::propagate(std::size_t k, int id) {
+Propagation LabelEditor::propagate(std::size_t k, int id) {
   if (k + 1 >= size()) throw LabelError("sweep " + std::to_string(k) + " is the last one");
   const ObjectLabel* obj = object(k, id);
   if (!obj)
@@ -346,7 +346,7 @@ Propagation LabelSession::propagate(std::size_t k, int id) {
   return out;
 }
 
-void LabelSession::setReviewed(std::size_t k, bool reviewed) {
+void LabelEditor::setReviewed(std::size_t k, bool reviewed) {
   SweepLabels& sl = mutableLabels(k);
   sl.reviewed = reviewed;
   if (reviewed)
@@ -354,17 +354,17 @@ void LabelSession::setReviewed(std::size_t k, bool reviewed) {
   revision_++;
 }
 
-std::size_t LabelSession::reviewedCount() const {
+std::size_t LabelEditor::reviewedCount() const {
   return static_cast<std::size_t>(std::count_if(labels_.begin(), labels_.end(),
                                                 [](const SweepLabels& s) { return s.reviewed; }));
 }
 
-std::size_t LabelSession::labelledCount() const {
+std::size_t LabelEditor::labelledCount() const {
   return static_cast<std::size_t>(std::count_if(
       labels_.begin(), labels_.end(), [](const SweepLabels& s) { return !s.objects.empty(); }));
 }
 
-std::size_t LabelSession::loadPrelabels(const std::string& labels_file) {
+std::size_t LabelEditor::loadPrelabels(const std::string& labels_file) {
   io::LabelFile f;
   try {
     f = io::LabelFile::read(labels_file);
@@ -402,11 +402,11 @@ std::size_t LabelSession::loadPrelabels(const std::string& labels_file) {
   return added;
 }
 
-std::vector<std::string> LabelSession::outputFiles(const std::string& base) {
+std::vector<std::string> LabelEditor::outputFiles(const std::string& base) {
   return {base + ".labels", base + ".instances", base + ".session.json"};
 }
 
-void LabelSession::save(const std::string& base, const std::string& rawlog) const {
+void LabelEditor::save(const std::string& base, const std::string& rawlog) const {
   std::vector<std::uint8_t> reviewed(size());
   for (std::size_t k = 0; k < size(); k++) reviewed[k] = labels_[k].reviewed ? 1 : 0;
   const auto files = outputFiles(base);
@@ -456,7 +456,7 @@ void LabelSession::save(const std::string& base, const std::string& rawlog) cons
   js.commit();
 }
 
-void LabelSession::load(const std::string& base) {
+void LabelEditor::load(const std::string& base) {
   const auto files = outputFiles(base);
   io::LabelFile f;
   try {

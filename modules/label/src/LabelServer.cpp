@@ -18,7 +18,7 @@ namespace dynobj::label {
 using nlohmann::json;
 
 struct LabelServer::Impl {
-  LabelSession& session;
+  LabelEditor& session;
   ServerOptions opts;
   httplib::Server http;
   std::mutex mutex;  ///< guards the session and the save state
@@ -30,7 +30,7 @@ struct LabelServer::Impl {
   std::mutex wake_mutex;
   std::condition_variable wake;
 
-  Impl(LabelSession& s, ServerOptions o) : session(s), opts(std::move(o)) {
+  Impl(LabelEditor& s, ServerOptions o) : session(s), opts(std::move(o)) {
     // Nothing is on disk yet for this run (pre-labels, a fresh or resumed session): the first
     // autosave writes the files, so they exist and hold what the page shows from the start.
     saved_revision = ~std::uint64_t{0};
@@ -65,7 +65,7 @@ struct LabelServer::Impl {
   json infoJson() const {
     return {{"input", opts.rawlog},
             {"output", opts.output},
-            {"files", LabelSession::outputFiles(opts.output)},
+            {"files", LabelEditor::outputFiles(opts.output)},
             {"rows", session.rows()},
             {"cols", session.cols()},
             {"sweeps", session.size()},
@@ -226,7 +226,7 @@ struct LabelServer::Impl {
           return;
         }
         res.set_content(
-            json{{"files", LabelSession::outputFiles(opts.output)}, {"saved_at", saved_at}}.dump(),
+            json{{"files", LabelEditor::outputFiles(opts.output)}, {"saved_at", saved_at}}.dump(),
             "application/json");
       });
     });
@@ -258,7 +258,7 @@ struct LabelServer::Impl {
   }
 };
 
-LabelServer::LabelServer(LabelSession& session, ServerOptions opts)
+LabelServer::LabelServer(LabelEditor& session, ServerOptions opts)
     : impl_(std::make_unique<Impl>(session, std::move(opts))) {
   if (!std::filesystem::is_regular_file(impl_->opts.page_dir + "/index.html"))
     throw LabelError("the page is missing: no index.html in '" + impl_->opts.page_dir +

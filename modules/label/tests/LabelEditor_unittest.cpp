@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/io/LabelFile.h>
-#include <dynobj/label/LabelSession.h>
+#include <dynobj/label/LabelEditor.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
 #include <dynobj/mrptio/RawlogIndex.h>
 #include <gtest/gtest.h>
@@ -80,10 +80,10 @@ label::LabelParams noFeet() {
 
 }  // namespace
 
-TEST(LabelSession, GrowFromAClickGivesExactlyTheObjectsPixels) {
+TEST(LabelEditor, GrowFromAClickGivesExactlyTheObjectsPixels) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 1.2, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   const auto f = s.sweep(0);
   const auto truth = postPixels(f->frame, 4, 0);
   ASSERT_GT(truth.size(), 10u);
@@ -93,10 +93,10 @@ TEST(LabelSession, GrowFromAClickGivesExactlyTheObjectsPixels) {
   EXPECT_EQ(grown, truth) << diff(grown, truth);
 }
 
-TEST(LabelSession, DistanceThresholdSeparatesOrJoinsCloseObjects) {
+TEST(LabelEditor, DistanceThresholdSeparatesOrJoinsCloseObjects) {
   label::MemorySweeps src;  // post b stands behind post a's left edge: adjacent in the image,
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4.5, 0.5, 0.3, 1.8}}, 0, kT0));  // ~0.3 m apart in 3D
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   const auto f = s.sweep(0);
   const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4.5, 0.5);
   const int W = f->frame.cols();
@@ -109,10 +109,10 @@ TEST(LabelSession, DistanceThresholdSeparatesOrJoinsCloseObjects) {
   EXPECT_EQ(s.grow(0, static_cast<int>(click) / W, static_cast<int>(click) % W, -1, 0.4), both);
 }
 
-TEST(LabelSession, GrowingNeverEntersGroundOrAnotherObject) {
+TEST(LabelEditor, GrowingNeverEntersGroundOrAnotherObject) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}, {4, 0.85, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   const auto f = s.sweep(0);
   const int W = f->frame.cols();
   const auto a = postPixels(f->frame, 4, 0), b = postPixels(f->frame, 4, 0.85);
@@ -133,10 +133,10 @@ TEST(LabelSession, GrowingNeverEntersGroundOrAnotherObject) {
   EXPECT_THROW(s.grow(3, 0, 0), label::LabelError);   // no such sweep
 }
 
-TEST(LabelSession, SetObjectTakesPixelsFromOtherObjectsAndTracksReview) {
+TEST(LabelEditor, SetObjectTakesPixelsFromOtherObjectsAndTracksReview) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   s.setObject(0, 1, {5, 6, 7});
   s.setObject(0, 2, {7, 8}, label::LabelState::proposed);
   ASSERT_NE(s.object(0, 1), nullptr);
@@ -152,13 +152,13 @@ TEST(LabelSession, SetObjectTakesPixelsFromOtherObjectsAndTracksReview) {
   EXPECT_THROW(s.setObject(0, 0, {1}), label::LabelError);
 }
 
-TEST(LabelSession, PropagationFollowsAWalkerWithOdometryAndVelocity) {
+TEST(LabelEditor, PropagationFollowsAWalkerWithOdometryAndVelocity) {
   // The sensor drives +x at 2 m/s, the walker walks +y at 1.5 m/s (0.15 m per sweep).
   label::MemorySweeps src;
   for (int k = 0; k < 4; k++)
     src.add(frameWith({{6, 0.15 * k, 0.3, 1.8}, {6, -2.5, 0.3, 1.8}}, 0.2 * k, kT0 + k * kDt),
             at(0.2 * k));
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   const int W = s.cols();
   const auto truth0 = postPixels(s.sweep(0)->frame, 6, 0);
   const auto grown = s.grow(0, static_cast<int>(truth0[0]) / W, static_cast<int>(truth0[0]) % W);
@@ -190,11 +190,11 @@ TEST(LabelSession, PropagationFollowsAWalkerWithOdometryAndVelocity) {
   EXPECT_EQ(s.object(2, id)->pixels, (std::vector<std::uint32_t>{1, 2, 3}));
 }
 
-TEST(LabelSession, PropagationReportsALostObject) {
+TEST(LabelEditor, PropagationReportsALostObject) {
   label::MemorySweeps src;
   src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0), at(0));
   src.add(frameWith({}, 0, kT0 + kDt), at(0));  // the walker is gone
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   s.setObject(0, 1, postPixels(s.sweep(0)->frame, 6, 0));
   const auto p = s.propagate(0, 1);
   EXPECT_FALSE(p.found);
@@ -203,7 +203,7 @@ TEST(LabelSession, PropagationReportsALostObject) {
   EXPECT_THROW(s.propagate(0, 9), label::LabelError);  // unknown object
 }
 
-TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
+TEST(LabelEditor, SaveWritesLabelsInstancesAndReviewAndResumes) {
   label::MemorySweeps src;
   for (int k = 0; k < 3; k++)
     src.add(frameWith({{6, 0.15 * k, 0.3, 1.8}}, 0, kT0 + k * kDt), at(0));
@@ -211,7 +211,7 @@ TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
   const std::string base = dir + "/walk";
   std::vector<std::uint32_t> px0;
   {
-    label::LabelSession s(src, noFeet());
+    label::LabelEditor s(src, noFeet());
     px0 = postPixels(s.sweep(0)->frame, 6, 0);
     const int walker = s.newObject("pedestrian", true);
     const int parked = s.newObject("car", false);
@@ -221,7 +221,7 @@ TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
     ASSERT_TRUE(s.propagate(0, walker).found);  // sweep 1: a proposal, unreviewed
     s.save(base, "walk.rawlog");
   }
-  for (const auto& f : label::LabelSession::outputFiles(base))
+  for (const auto& f : label::LabelEditor::outputFiles(base))
     EXPECT_TRUE(std::filesystem::exists(f)) << f;
   EXPECT_FALSE(std::filesystem::exists(base + ".labels.partial"));
 
@@ -245,7 +245,7 @@ TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
   EXPECT_EQ(inst.sweeps[0].pixels[0], 0u);
   EXPECT_EQ(inst.sweeps[0].ids[0], 2);
 
-  label::LabelSession r(src, {});
+  label::LabelEditor r(src, {});
   r.load(base);
   EXPECT_EQ(r.reviewedCount(), 1u);
   ASSERT_NE(r.object(0, 1), nullptr);
@@ -258,17 +258,17 @@ TEST(LabelSession, SaveWritesLabelsInstancesAndReviewAndResumes) {
   EXPECT_EQ(r.newObject(), 3);  // ids continue after the saved ones
 }
 
-TEST(LabelSession, ResumingLabelsOfAnotherSensorOrRecordingIsRefused) {
+TEST(LabelEditor, ResumingLabelsOfAnotherSensorOrRecordingIsRefused) {
   label::MemorySweeps src;
   src.add(frameWith({}, 0, kT0));
   src.add(frameWith({}, 0, kT0 + kDt));
   const std::string base = tempDir("other") + "/x";
-  label::LabelSession(src, {}).save(base);
+  label::LabelEditor(src, {}).save(base);
 
   label::MemorySweeps narrow;  // another sensor mode: 180 columns
   narrow.add(frameWith({}, 0, kT0, 180));
   narrow.add(frameWith({}, 0, kT0 + kDt, 180));
-  label::LabelSession s(narrow, {});
+  label::LabelEditor s(narrow, {});
   try {
     s.load(base);
     FAIL();
@@ -282,15 +282,15 @@ TEST(LabelSession, ResumingLabelsOfAnotherSensorOrRecordingIsRefused) {
   label::MemorySweeps later;  // the same sensor, other times
   later.add(frameWith({}, 0, kT0 + 5 * kDt));
   later.add(frameWith({}, 0, kT0 + 6 * kDt));
-  label::LabelSession l(later, {});
+  label::LabelEditor l(later, {});
   EXPECT_THROW(l.load(base), label::LabelError);
   EXPECT_THROW(l.load(base + "-missing"), label::LabelError);
 }
 
-TEST(LabelSession, AFailedSaveKeepsEverythingAndLeavesNoFile) {
+TEST(LabelEditor, AFailedSaveKeepsEverythingAndLeavesNoFile) {
   label::MemorySweeps src;
   src.add(frameWith({{6, 0, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   s.setObject(0, 1, {3, 4});
   const std::string dir = tempDir("unwritable");
   { std::ofstream(dir + "/file") << "x"; }
@@ -303,7 +303,7 @@ TEST(LabelSession, AFailedSaveKeepsEverythingAndLeavesNoFile) {
             (std::vector<std::uint32_t>{3, 4}));
 }
 
-TEST(LabelSession, DetectorOutputBecomesPrelabelsPerConnectedGroup) {
+TEST(LabelEditor, DetectorOutputBecomesPrelabelsPerConnectedGroup) {
   label::MemorySweeps src;
   src.add(frameWith({}, 0, kT0));
   src.add(frameWith({}, 0, kT0 + kDt));
@@ -314,7 +314,7 @@ TEST(LabelSession, DetectorOutputBecomesPrelabelsPerConnectedGroup) {
     w.write(kT0 + kDt, {});
     w.close();
   }
-  label::LabelSession s(src, noFeet());
+  label::LabelEditor s(src, noFeet());
   EXPECT_EQ(s.loadPrelabels(dir + "/det.labels"), 2u);
   ASSERT_EQ(s.labels(0).objects.size(), 2u);
   EXPECT_EQ(s.labels(0).objects[0].pixels, (std::vector<std::uint32_t>{0, 1, 361}));
@@ -376,11 +376,11 @@ TEST(RawlogSweeps, ReadsTheSampleInAnyOrderLikeTheSequentialReader) {
                mrptio::RawlogError);
 }
 
-TEST(LabelSession, TheFeetRuleAddsTheBaseBelowTheObjectOnly) {
+TEST(LabelEditor, TheFeetRuleAddsTheBaseBelowTheObjectOnly) {
   label::MemorySweeps src;
   src.add(frameWith({{4, 0, 0.3, 1.8}}, 0, kT0));
-  label::LabelSession with(src, {});  // feet on (the default)
-  label::LabelSession without(src, noFeet());
+  label::LabelEditor with(src, {});  // feet on (the default)
+  label::LabelEditor without(src, noFeet());
   const auto& f = with.sweep(0)->frame;
   const int W = f.cols();
   const auto body = postPixels(f, 4, 0), all = postPixels(f, 4, 0, 0.3, true);

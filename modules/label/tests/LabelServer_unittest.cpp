@@ -24,7 +24,7 @@ std::string tempDir(const std::string& name) {
 
 struct Fixture {
   label::MemorySweeps src;
-  std::unique_ptr<label::LabelSession> session;
+  std::unique_ptr<label::LabelEditor> session;
   std::unique_ptr<label::LabelServer> server;
   std::thread thread;
   int port = 0;
@@ -34,7 +34,7 @@ struct Fixture {
     scene.posts.push_back({4, 0, 0.3, 1.8});
     src.add(test::render(scene, test::smallSensor(16, 360), true, 1000));
     src.add(test::render(scene, test::smallSensor(16, 360), true, 2000));
-    session = std::make_unique<label::LabelSession>(src, label::LabelParams{});
+    session = std::make_unique<label::LabelEditor>(src, label::LabelParams{});
     label::ServerOptions o;
     o.port = want_port;
     o.page_dir = std::string(DYNOBJ_SHARE_DIR) + "/label";
@@ -134,7 +134,7 @@ TEST(LabelServer, APortInUseIsAClearError) {
 TEST(LabelServer, AMissingPageIsAClearError) {
   label::MemorySweeps src;
   src.add(test::render({}, test::smallSensor(16, 360), true, 1000));
-  label::LabelSession s(src, {});
+  label::LabelEditor s(src, {});
   label::ServerOptions o;
   o.page_dir = tempDir("nopage");
   EXPECT_THROW(label::LabelServer(s, o), label::LabelError);

@@ -30,18 +30,19 @@ struct AssociationParams : public StageParams {
   double split_min_share = 0.25;
   /// [m] ... except that a mover's part under that share is still the mover's when its centroid
   /// lies this near the mover's prediction (a walker beside a wall or a parked car, which holds
-  /// far more points); 0 = off (before Session 27)
+  /// far more points); 0 = off
   double split_match_radius = 0.1;
   /// when no split is made and the mover's track took the cluster, the resting object's track
   /// takes it whole if its part holds at least half of the points (the mover coasts; false = the
-  /// mover keeps it, and with it the resting object, as before Session 27)
+  /// mover keeps it, and with it the resting object)
   bool split_rest_majority = true;
   /// when no split is made and the mover's track keeps the cluster, the resting object's part in
   /// it (a share of at least split_min_share) is held back: neither seeds nor grown into
-  /// (false = flagged with the mover, as before Session 30)
+  /// (false = flagged with the mover)
   bool split_hold_back = true;
   /// beyond the paper: the tracks of objects moving at the last sweep are associated first, with
-  /// the clusters within half their gate; then every other track with the clusters left. A big
+  /// the clusters nearest to them of all predictions and within half their gate; then every other
+  /// track with the clusters left. A big
   /// mover often shows as one large cluster and small ones beside it, each with a track: with one
   /// global assignment a young track next to the mover's cluster can take it, and the mover,
   /// handed a small one, is lost and confirmed again ~0.5 s later (real HDL-64 data_2: online F1
@@ -77,8 +78,9 @@ class ClusterAssociator {
                              const std::vector<double>& gates = {}) const;
 
   /// associate() in two rounds when movers_first: first the tracks flagged in `first` (the
-  /// movers seen at the last sweep) with every cluster within half their gate, then the tracks
-  /// still unpaired with the clusters the first round left; one round over all tracks otherwise.
+  /// movers seen at the last sweep) with the clusters whose nearest prediction is a mover's, within
+  /// half its gate; then the tracks still unpaired with the clusters the first round left; one
+  /// round over all tracks otherwise.
   std::vector<int> associateMoversFirst(const std::vector<Eigen::Vector3d>& current,
                                         const std::vector<Eigen::Vector3d>& predicted,
                                         const std::vector<double>& gates,

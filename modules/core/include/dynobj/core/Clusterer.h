@@ -20,7 +20,7 @@ namespace dynobj::core {
 struct ClusteringParams : public StageParams {
   double horizontal_distance = 0.35;  ///< epsilon_xy [m]
   double vertical_distance = 0.6;     ///< epsilon_z [m]
-  int min_points = 3;                 ///< smaller clusters are dropped (4 before Session 22) ...
+  int min_points = 3;                 ///< smaller clusters are dropped ...
   /// ... unless they have at least this many points: such a weak cluster only seeds a track that
   /// is already dynamic and found no cluster of min_points (a mover whose features dip below
   /// min_points for a sweep; 0 or >= min_points = off). Beyond the paper, docs/algorithm.md §5

@@ -40,13 +40,13 @@ struct HindsightParams : public StageParams {
   double min_dynamic = 0.3;   ///< [s] a track dynamic this long is trusted (one sweep at least)
   /// an earlier sweep is not flagged when the object stood there: on each of the two steps from
   /// the sweeps before it, its speed was below a quarter of its speed to the next sweep that saw
-  /// it (a walker who starts just after a sweep; false = flag it, as before Session 14)
+  /// it (a walker who starts just after a sweep; false = flag it)
   bool start_check = true;
   double max_growth = 0.5;  ///< [m] an earlier cluster whose horizontal extent (box diagonal)
                             ///< exceeds 1.5 x the object's by more had merged: stop
   /// a flagged object is unflagged, before its frame is written, when it stood there: on each of
   /// the two steps to the next sweeps that saw it, slower than a quarter of its track's speed (a
-  /// walker who stopped just before the sweep; false = keep it flagged, as before Session 17)
+  /// walker who stopped just before the sweep; false = keep it flagged)
   bool stop_check = true;
   /// [m/s] stop_check also unflags an object whose two steps out, taken together, moved slower
   /// than this (its centroid's jitter, 0.01-0.05 m per sweep, beats a quarter of a speed that
@@ -55,27 +55,27 @@ struct HindsightParams : public StageParams {
   /// an earlier sweep's region does not take a point that the newest held frame still sees on a
   /// surface (not ground; as [region_growing] past_surface_check, the other way in time), when the
   /// object has since travelled farther than its own extent: someone standing beside a walker
-  /// when the recording starts (false = as before Session 24)
+  /// when the recording starts (false = off)
   bool later_surface_check = true;
   /// ... asked point by point, of the cluster's own points too: any point outside the object's
   /// box in the newest held frame (plus [region_growing] distance) that the newest frame sees on
   /// a surface, whatever the object's travel (a walker who passed someone standing when the
-  /// recording started, merged with them in one cluster; false = as before Session 27: grown
+  /// recording started, merged with them in one cluster; false = grown
   /// points only, once the object has travelled farther than its extent)
   bool later_surface_points = true;
   /// the way from an earlier sweep (min_speed) counts only along where the track went from
   /// there to the newest sweep: a parked car's centroid drifts sideways as the sensor drives past
-  /// and its visible faces turn, before it pulls out (false = the whole way, as before Session 26)
+  /// and its visible faces turn, before it pulls out (false = the whole way)
   bool way_along = true;
   /// a sweep inside a track's dynamic run where its track was not seen (coasting: its features
   /// fell short) takes the object's points about where it was, between the sightings before and
   /// after, at least min_speed apart, where the nearest held frames by which it had left do not
-  /// see a surface there (false = as before Session 29)
+  /// see a surface there (false = off)
   bool fill_gaps = true;
   /// ... and so do the sweeps before a trusted track was first seen, back from its earliest
   /// sighting at its speed, while each finds the object there and one of those frames sees
-  /// through its place (a far walker of a few points a sweep, found only as it nears; false = as
-  /// before Session 29)
+  /// through its place (a far walker of a few points a sweep, found only as it nears; false =
+  /// off)
   bool fill_before = true;
   double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
                                ///< (half of it at least), never gets this far from where it is

@@ -10,10 +10,9 @@
 #include <random>
 #include <vector>
 
-namespace dynobj::core {
+#include "dynobj/core/EgoMotion.h"
 
-struct EgoMotionParams;
-struct EgoMotion;
+namespace dynobj::core {
 
 /// One ORB match lifted to 3D.
 struct PointMatch {

@@ -31,7 +31,7 @@ struct MovementParams : public StageParams {
   double stop_speed = 0.3;  ///< ... moved slower than this [m/s] has stopped: not moving, and a
                             ///< dynamic track is released at once (no hysteresis); 0 = off
   /// epsilon_d [m] over the window: 0.2 m in the k - 1 = 4 steps of 0.1 s is 0.5 m/s, hindsight's
-  /// min_speed (0.25 before Session 22, with 3-D steps: a walker's height jitter made up the rest)
+  /// min_speed (with 3-D steps a walker's height jitter needs 0.25 m)
   double min_displacement = 0.2;
   double min_straightness = 0.5;  ///< epsilon_o: f / f_a below this is drift
   /// Beyond the paper: f and f_a over the centroids' horizontal steps (the x-y plane of the
@@ -49,7 +49,7 @@ struct MovementParams : public StageParams {
   /// [m] ... or, for a cluster at least this long in both, whose two ends moved alike (within
   /// rigid_tolerance of their mean) and farther than its centroid: a car passing the sensor,
   /// whose densest points stay abreast of the sensor while its ends move with it (a short
-  /// cluster's ends are noise). Beyond the paper; 0 = off, as before Session 28
+  /// cluster's ends are noise). Beyond the paper; 0 = off
   /// (docs/algorithm.md §7).
   double rigid_ends_length = 2.0;
   /// Eq. (23) rejects a long object only when its displacement f is at most this many times the

@@ -25,13 +25,13 @@ struct RegionGrowingParams : public StageParams {
   /// slope_factor x (the gap between the two rows at that range) farther [-], when the two points
   /// are no farther apart across the rays than epsilon: an object's top set back from its face (a
   /// car's cabin behind its boot, seen from behind; its windscreen behind its bonnet) where a
-  /// sparse sensor's rows jump over the surface between them. 0 = off (before Session 24)
+  /// sparse sensor's rows jump over the surface between them. 0 = off
   double slope_factor = 3;
   /// [m] ... for objects whose seeds lie farther than this from their centre (horizontally):
   /// wider than a person, whose pixel above the head is whatever stands behind it
   double set_back_radius = 0.3;
   double max_extent = 1.5;  ///< [m] no pixel farther than this (horizontally) from the seeds'
-                            ///< centre, or than half the seeds' own extent plus this, if larger
+                            ///< centre, or than the seeds' own radius plus half this, if larger
   int max_pixels = 20000;   ///< safety limit per object
   /// a mover's region does not take the points of an object whose track is at rest (judged
   /// static settled_frames ([tracking]) times in a row, or clearly stopped, stop_at_rest): a
@@ -39,7 +39,7 @@ struct RegionGrowingParams : public StageParams {
   bool keep_out_settled = true;
   /// [m] ... nor a point nearer to such an object's feature points than to the mover's own seeds,
   /// both within this distance: the body of one who stands beside a walker, of which the feature
-  /// points alone are kept out (0 = off, as before Session 27)
+  /// points alone are kept out (0 = off)
   double nearer_rest_radius = 0.5;
   /// a mover's region does not take a point that the free-space check's lookback frame saw on
   /// a surface, when the mover has since travelled farther than its own extent (so it was not

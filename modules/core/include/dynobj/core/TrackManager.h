@@ -28,7 +28,7 @@ struct TrackingParams : public StageParams {
                                    ///< Default = confirm_frames: off (docs/algorithm.md §7c)
   bool stop_at_rest = true;  ///< a mover released by a clear stop ([movement] stop_window) is at
                              ///< rest at once, not only once settled (a walker who pauses beside
-                             ///< a passer; false = as before Session 28)
+                             ///< a passer; false = only once settled)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;

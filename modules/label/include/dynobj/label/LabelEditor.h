@@ -90,9 +90,9 @@ struct Propagation {
   std::string ego_motion;             ///< "odometry", "intensity", "none"
 };
 
-class LabelSession {
+class LabelEditor {
  public:
-  LabelSession(SweepSource& source, const LabelParams& params);
+  LabelEditor(SweepSource& source, const LabelParams& params);
 
   std::size_t size() const { return labels_.size(); }
   int rows() const { return rows_; }

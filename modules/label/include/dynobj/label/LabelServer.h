@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-label's HTTP side: serves the page (share/dynobj/label/) and a small JSON API over one
-// LabelSession on 127.0.0.1 only (cpp-httplib, Debian's libcpp-httplib-dev), and saves the session
+// LabelEditor on 127.0.0.1 only (cpp-httplib, Debian's libcpp-httplib-dev), and saves the session
 // every few seconds when it changed (autosave) and on request. The API (all JSON unless noted):
 //   GET  /api/info                      input, size, counts, objects, save state
 //   GET  /api/sweep?k=N                 labels of sweep N (objects: id, state, pixels), reviewed
@@ -19,14 +19,14 @@
 #include <memory>
 #include <string>
 
-#include "dynobj/label/LabelSession.h"
+#include "dynobj/label/LabelEditor.h"
 
 namespace dynobj::label {
 
 struct ServerOptions {
   int port = 8080;          ///< 0 = any free port
   std::string page_dir;     ///< share/dynobj/label
-  std::string output;       ///< base name of the saved files (LabelSession::save)
+  std::string output;       ///< base name of the saved files (LabelEditor::save)
   std::string rawlog;       ///< recorded in the session file
   double autosave_s = 2.0;  ///< save this often when something changed (0 = only on request)
 };
@@ -34,7 +34,7 @@ struct ServerOptions {
 class LabelServer {
  public:
   /// Checks the page folder (throws LabelError when index.html is missing).
-  LabelServer(LabelSession& session, ServerOptions opts);
+  LabelServer(LabelEditor& session, ServerOptions opts);
   ~LabelServer();
   LabelServer(const LabelServer&) = delete;
   LabelServer& operator=(const LabelServer&) = delete;
