@@ -165,80 +165,67 @@ const DetectionResult& DynamicObjectDetector::process(
   foreground_.normalize(frame);
   r.timings.foreground = clock.lap();
 
-  // III-B-1, Eq. (5): ego-motion between the previous frame and this one. Nothing up to the
-  // association reads it: with [pipeline] threads = 2 it runs on the worker meanwhile.
+  // III-B-1, Eq. (5): the ego-motion between the previous frame and this one, on the worker
+  // ([pipeline] threads = 2) while the ground, the features (III-A-2) and their clusters (III-B-2)
+  // are found here: nothing up to the association reads it.
   worker_.start([&] {
     StageClock ego_clock;
     r.ego_motion = egoMotion(frame, external_motion);
     r.timings.ego_motion = ego_clock.lap();
   });
-  clock.lap();  // threads = 1: the ego-motion ran inside start(), timed on its own
-
   try {
-    // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
-    ground_.segment(frame, r.ground);
-    r.timings.ground = clock.lap();
-
-    // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
-    const bool no_ground = params_.foreground.exclude_ground;
-    foreground_.extractNormalized(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(),
-                                  r.features);
-    r.timings.foreground += clock.lap();
-
-    // III-B-2, Eq. (6)-(7): clusters of the foreground points.
-    clusterer_.cluster(frame, r.features, clusters_, &weak_);
-    r.timings.clustering = clock.lap();
+    featuresAndClusters(frame);
   } catch (...) {
     worker_.drain();  // the ego-motion works on `frame` and `r`: finished before they go
     throw;
   }
   worker_.wait();
   chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
-  clock.lap();  // the wait for the ego-motion: in no stage's own time
+  clock.lap();  // the stages above timed themselves; the wait for the ego-motion is in none
 
-  // III-B-3, Eq. (8)-(13): tracks predicted into this frame, then GNN / Hungarian association;
-  // beyond the paper, a mover left without a cluster may find a weak one to seed from.
-  tracks_.predict(r.ego_motion.motion, dt);
-  const std::vector<Eigen::Vector3d> predicted = tracks_.predicted();
-  std::vector<double> gates;  // beyond the paper: wider for a track with no velocity yet
-  gates.reserve(predicted.size());
-  for (const Track& t : tracks_.tracks()) {
-    const WindowEntry& seen = t.window.back();
-    gates.push_back(t.window.size() < 2
-                        ? associator_.gate((t.missed + 1) * dt, (seen.end_b - seen.end_a).norm())
-                        : associator_.gate(0, 0));
-  }
-  std::vector<char> movers;  // beyond the paper: the tracks moving at the last sweep go first
-  movers.reserve(predicted.size());
-  for (const Track& t : tracks_.tracks()) movers.push_back(t.dynamic && t.missed == 0);
-  std::vector<int> cluster_to_track =
-      associator_.associateMoversFirst(centroidsOf(clusters_), predicted, gates, movers);
-  // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
-  held_.clear();
-  const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
-                                              predicted, clusters_, cluster_to_track, &held_);
-  std::sort(held_.begin(), held_.end());
-  findWeakSeeds(predicted, cluster_to_track);
-  tracks_.update(frame_index_, clusters_, cluster_to_track);
+  // III-B-3, Eq. (8)-(13): the tracks predicted into this frame, then GNN / Hungarian association.
+  const std::vector<int> split = associate(frame, dt);
   r.timings.association = clock.lap();
 
-  // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window, outliers
-  // rejected; the clusters of dynamic tracks are the seeds. Then the objects at rest keep their
-  // points, for the next frame's split.
+  // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window; the clusters
+  // of the dynamic tracks are the seeds. The objects at rest keep their points (the next split).
   const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
   rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
   r.timings.movement = clock.lap();
 
   // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
-  const std::vector<int> grown =
-      grower_.grow(frame, r.ground, seeds, r.dynamic, owner_,
-                   nearerTheMover(frame, seeds, pastSurfaceTest(frame, dt, seeds)));
-  r.seen_static = grower_.refused();
+  const std::vector<int> grown = grow(frame, dt, seeds);
   r.timings.region_growing = clock.lap();
 
   endFrame(frame, grown);
   r.timings.total = clock.total();
   return r;
+}
+
+void DynamicObjectDetector::featuresAndClusters(const LidarFrame& frame) {
+  StageClock clock;
+  DetectionResult& r = result_;
+  // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
+  ground_.segment(frame, r.ground);
+  r.timings.ground = clock.lap();
+  // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
+  const bool no_ground = params_.foreground.exclude_ground;
+  foreground_.extractNormalized(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(), r.features);
+  r.timings.foreground += clock.lap();
+  // III-B-2, Eq. (6)-(7): clusters of the foreground points.
+  clusterer_.cluster(frame, r.features, clusters_, &weak_);
+  r.timings.clustering = clock.lap();
+}
+
+std::vector<int> DynamicObjectDetector::grow(const LidarFrame& frame, double dt,
+                                             const std::vector<std::vector<int>>& seeds) {
+  // Beyond the paper (§8): not into what the lookback frame saw on a surface, nor nearer to an
+  // object at rest than to the mover's own seeds.
+  const std::vector<int> grown =
+      grower_.grow(frame, result_.ground, seeds, result_.dynamic, owner_,
+                   nearerTheMover(frame, seeds, pastSurfaceTest(frame, dt, seeds)));
+  result_.seen_static = grower_.refused();
+  return grown;
 }
 
 double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
@@ -259,6 +246,22 @@ double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
   owner_.create(frame.range.size());
   owner_.setTo(-1);
   return dt;
+}
+
+std::vector<int> DynamicObjectDetector::associate(const LidarFrame& frame, double dt) {
+  tracks_.predict(result_.ego_motion.motion, dt);  // Eq. (8)
+  const std::vector<Eigen::Vector3d> predicted = tracks_.predicted();
+  // Eq. (9)-(13), beyond the paper: the movers first, a wider gate for a track with no velocity.
+  std::vector<int> cluster_to_track = associator_.associateMoversFirst(
+      centroidsOf(clusters_), predicted, tracks_.gates(associator_, dt), tracks_.movers());
+  // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
+  held_.clear();
+  const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
+                                              predicted, clusters_, cluster_to_track, &held_);
+  std::sort(held_.begin(), held_.end());
+  findWeakSeeds(predicted, cluster_to_track);
+  tracks_.update(frame_index_, clusters_, cluster_to_track);
+  return split;
 }
 
 void DynamicObjectDetector::findWeakSeeds(const std::vector<Eigen::Vector3d>& predicted,

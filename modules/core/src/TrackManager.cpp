@@ -74,6 +74,25 @@ std::vector<Eigen::Vector3d> TrackManager::predicted() const {
   return out;
 }
 
+std::vector<double> TrackManager::gates(const ClusterAssociator& a, double dt) const {
+  std::vector<double> out;
+  out.reserve(tracks_.size());
+  for (const Track& t : tracks_) {
+    const WindowEntry& seen = t.window.back();
+    out.push_back(t.window.size() < 2
+                      ? a.gate((t.missed + 1) * dt, (seen.end_b - seen.end_a).norm())
+                      : a.gate(0, 0));
+  }
+  return out;
+}
+
+std::vector<char> TrackManager::movers() const {
+  std::vector<char> out;
+  out.reserve(tracks_.size());
+  for (const Track& t : tracks_) out.push_back(t.dynamic && t.missed == 0);
+  return out;
+}
+
 void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
                           const std::vector<int>& cluster_to_track) {
   const double r = p_.measurement_noise * p_.measurement_noise;

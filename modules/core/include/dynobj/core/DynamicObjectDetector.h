@@ -99,6 +99,16 @@ class DynamicObjectDetector {
   /// Frame index, result and buffers reset for `frame`; returns the seconds since the last frame.
   double beginFrame(const LidarFrame& frame);
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
+  /// The stages beside the ego-motion: ground (III-C-3's stop), features (III-A-2, Eq. 2-4),
+  /// clusters (III-B-2, Eq. 6-7), each timed.
+  void featuresAndClusters(const LidarFrame& frame);
+  /// III-C-3, Eq. (24)-(25): the seeds grown into result_.dynamic (owner_); returns the pixels.
+  std::vector<int> grow(const LidarFrame& frame, double dt,
+                        const std::vector<std::vector<int>>& seeds);
+  /// III-B-3: the tracks predicted into this frame (Eq. 8), the clusters associated with them
+  /// (Eq. 9-13; the movers first), a cluster holding a mover and an object at rest split
+  /// (splitSettled: returned, per cluster), the weak seeds found, the tracks updated.
+  std::vector<int> associate(const LidarFrame& frame, double dt);
   /// Beyond the paper (docs/algorithm.md §5): the dynamic tracks that `cluster_to_track` left
   /// without a cluster, associated with the weak clusters (fewer than min_points features) near
   /// their `predicted` centroids by the same gated association: weak_seeds_.

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "dynobj/core/ClusterAssociator.h"
 #include "dynobj/core/Clusterer.h"
 #include "dynobj/core/MovementAnalyzer.h"
 #include "dynobj/core/Params.h"
@@ -68,6 +69,11 @@ class TrackManager {
   void predict(const Eigen::Isometry3d& motion, double dt);
   /// Predicted centroids, in track order (the "R c + t" of Eq. 8).
   std::vector<Eigen::Vector3d> predicted() const;
+  /// Each track's association gate (ClusterAssociator::gate): wider for a track seen once (no
+  /// velocity yet) over the `dt` seconds per sweep it went unseen.
+  std::vector<double> gates(const ClusterAssociator& a, double dt) const;
+  /// Each track: moving at the last sweep and seen there (associated first).
+  std::vector<char> movers() const;
   /// Applies the association: `cluster_to_track[m]` = track index or -1 (new track).
   void update(long frame, const std::vector<Cluster>& clusters,
               const std::vector<int>& cluster_to_track);
