@@ -7,10 +7,10 @@
 # (3) runs the detector on the committed sample, scores it against its ground truth and writes
 # overlays (true positives red, false positives yellow, misses blue); (4) evaluates it beside
 # its baselines and writes the HTML report (dynobj-eval); (5) the main job: filters the sample with
-# rawlog-dynobj, maps the raw and the filtered rawlog with stock icp-slam, and writes one picture
-# of both maps from above, side by side, printing how many map points lie on the moving people
-# before and after (ground truth used for this count and the picture only; the filter never sees
-# it).
+# rawlog-dynobj, maps the raw and the filtered rawlog with stock icp-slam, and compares the two
+# maps: label-free (how many map points the sweeps see through, each map with its own icp-slam
+# poses) and against the ground truth (how many lie on the moving people; the filter never sees
+# it), each with a picture of both maps from above, side by side.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
@@ -40,12 +40,19 @@ ICP_INI="$DYNOBJ_ROOT/share/dynobj/config/icp-slam-hall.ini"
 (cd "$SLAM/raw" && icp-slam "$ICP_INI" "$SAMPLE.rawlog" > icp-slam.log)
 (cd "$SLAM/filtered" && icp-slam "$ICP_INI" ../filtered.rawlog > icp-slam.log)
 MAP=icp-slam-out/_finalmaps_.txt_mrpt__maps__CSimplePointsMap_00.txt
+SM=icp-slam-out/_finalmap_.simplemap
+log "the two maps compared label-free (points the sweeps see through, each map with its own icp-slam poses)"
+"$BUILD_DIR/apps/dynobj-mapcompare" -i "$SAMPLE.rawlog" --before "$SLAM/raw/$MAP" \
+  --after "$SLAM/filtered/$MAP" --before-poses "$SLAM/raw/$SM" --after-poses "$SLAM/filtered/$SM" \
+  -o "$SLAM/maps-label-free.png" -w
+log "and against the sample's ground truth (points on the moving people)"
 "$BUILD_DIR/apps/dynobj-mapcompare" -i "$SAMPLE.rawlog" --gt "$SAMPLE.gt.labels" \
   --poses "$SAMPLE.gt.tum" --before "$SLAM/raw/$MAP" --after "$SLAM/filtered/$MAP" \
-  -o "$SLAM/maps-before-after.png"
+  -o "$SLAM/maps-before-after.png" -w
 log "done: images in ${OUT} (and ${OUT}/preview-x8); simulated sample and"
 log "      ${OUT}/hall-small/hall-small.preview.png (ground-truth dynamic pixels in red);"
 log "      detections and overlays in ${OUT}/detect/"
 log "      evaluation report: ${OUT}/eval/report.html (open it in a browser)"
-log "      the two icp-slam maps from above (left raw, right filtered; points on moving people red):"
+log "      the two icp-slam maps from above (left raw, right filtered): points the sweeps see"
+log "      through red: ${SLAM}/maps-label-free.png; points on moving people red:"
 log "      ${SLAM}/maps-before-after.png"

@@ -55,7 +55,12 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> kth("", "export-kth",
                                    "Also export a KTH DynamicMap folder (pcd/, gt_cloud.pcd)",
                                    false, "", "dir", cmd);
-  TCLAP::SwitchArg no_sm("", "no-simplemap", "Do not write cleaned.simplemap", cmd);
+  TCLAP::ValueArg<std::string> formats(
+      "", "formats",
+      "Outputs besides poses.tum, comma-separated: ply (static/dynamic.ply), pointsmap "
+      "(serialized CPointsMapXYZI), txt (x y z intensity), png (map.png, static.png), simplemap "
+      "(cleaned.simplemap keyframes), or all",
+      false, "ply,png,simplemap", "list", cmd);
   TCLAP::ValueArg<double> kf("", "keyframe-distance",
                              "Cleaned simplemap: keyframe every this many m (0 = every scan)",
                              false, 1.0, "m", cmd);
@@ -83,7 +88,7 @@ int run(int argc, char** argv) {
   o.ground_truth = gt.getValue();
   o.tolerance = tol.getValue();
   o.export_kth = kth.getValue();
-  o.write_simplemap = !no_sm.isSet();
+  o.formats = dynobj::mapclean::MapFormats::parse(formats.getValue());
   o.keyframe_distance = kf.getValue();
 
   const bool tty = isatty(STDERR_FILENO) && !quiet.isSet();

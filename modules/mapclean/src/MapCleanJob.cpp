@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mapclean/MapCleanJob.h"
 
+#include <dynobj/core/Config.h>
 #include <dynobj/core/FrameImages.h>
 #include <dynobj/io/Png.h>
 #include <dynobj/io/PoseFile.h>
@@ -28,15 +29,68 @@ bool isPcd(const std::string& f) {
   return fs::path(f).extension() == ".pcd";
 }
 
+/// The formats by name, in the order of MapFormats::toString().
+std::vector<std::pair<std::string, bool MapFormats::*>> formatNames() {
+  return {{"ply", &MapFormats::ply},
+          {"pointsmap", &MapFormats::pointsmap},
+          {"txt", &MapFormats::txt},
+          {"png", &MapFormats::png},
+          {"simplemap", &MapFormats::simplemap}};
+}
+
 }  // namespace
+
+MapFormats MapFormats::parse(const std::string& list) {
+  MapFormats f;
+  for (const auto& [name, member] : formatNames()) f.*member = false;
+  if (list == "all") {
+    for (const auto& [name, member] : formatNames()) f.*member = true;
+    return f;
+  }
+  std::vector<std::string> names;
+  for (const auto& [name, member] : formatNames()) names.push_back(name);
+  std::size_t begin = 0;
+  while (begin <= list.size()) {
+    const std::size_t end = std::min(list.find(',', begin), list.size());
+    const std::string item = list.substr(begin, end - begin);
+    begin = end + 1;
+    bool known = false;
+    for (const auto& [name, member] : formatNames())
+      if (item == name) f.*member = known = true;
+    if (known) continue;
+    if (item.empty())
+      throw std::invalid_argument("--formats '" + list +
+                                  "': an empty name (a comma-separated list of ply, pointsmap, "
+                                  "txt, png, simplemap, or all)");
+    const std::string near = core::closestName(item, names);
+    throw std::invalid_argument(
+        "--formats: unknown format '" + item + "'" +
+        (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+        "; one or more of ply, pointsmap, txt, png, simplemap (comma-separated), or all");
+  }
+  return f;
+}
+
+std::string MapFormats::toString() const {
+  std::string s;
+  for (const auto& [name, member] : formatNames())
+    if (this->*member) s += (s.empty() ? "" : ",") + name;
+  return s;
+}
 
 std::vector<std::string> outputFiles(const MapCleanOptions& o) {
   std::vector<std::string> files;
-  for (const char* name : {"static", "dynamic"})
-    for (const char* ext : {".ply", ".pointsmap", ".txt"})
-      files.push_back(o.out_dir + "/" + name + ext);
-  for (const char* f : {"map.png", "static.png", "poses.tum"}) files.push_back(o.out_dir + "/" + f);
-  if (o.write_simplemap) files.push_back(o.out_dir + "/cleaned.simplemap");
+  const MapFormats& f = o.formats;
+  for (const char* name : {"static", "dynamic"}) {
+    const std::string base = o.out_dir + "/" + name;
+    if (f.ply) files.push_back(base + ".ply");
+    if (f.pointsmap) files.push_back(base + ".pointsmap");
+    if (f.txt) files.push_back(base + ".txt");
+  }
+  if (f.png)
+    for (const char* png : {"map.png", "static.png"}) files.push_back(o.out_dir + "/" + png);
+  files.push_back(o.out_dir + "/poses.tum");
+  if (f.simplemap) files.push_back(o.out_dir + "/cleaned.simplemap");
   if (!o.export_kth.empty()) files.push_back(o.export_kth);
   return files;
 }
@@ -85,7 +139,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   MapCleanSummary sum;
   MapCleaner cleaner(o.clean);
   std::unique_ptr<CleanedSimplemapWriter> simplemap;
-  if (o.write_simplemap)
+  if (o.formats.simplemap)
     simplemap = std::make_unique<CleanedSimplemapWriter>(out + "cleaned.simplemap",
                                                          o.keyframe_distance, o.keyframe_angle);
   std::unique_ptr<KthExporter> exporter;
@@ -161,17 +215,27 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   sum.backfilled = cleaner.backfilledPixels();
   sum.confirmed_tracks = cleaner.confirmedTracks().size();
   for (const auto& [name, pts] : {std::pair{"static", &st}, std::pair{"dynamic", &dy}}) {
-    writePly(out + name + ".ply", *pts);
-    writePointsMapFiles(out + name, *pts);
-    for (const char* ext : {".ply", ".pointsmap", ".txt"}) sum.files.push_back(out + name + ext);
+    const std::string base = out + name;
+    if (o.formats.ply) writePly(base + ".ply", *pts);
+    if (o.formats.pointsmap) writePointsMapFile(base + ".pointsmap", *pts);
+    if (o.formats.txt) writePointsMapText(base + ".txt", *pts);
   }
-  const TopDownView view = TopDownView::fit(st, dy, o.png_resolution);
-  io::writePngAtomically(out + "map.png", renderTopDown(view, st, dy));
-  io::writePngAtomically(out + "static.png", renderTopDown(view, st, {}));
+  if (o.formats.png) {
+    const TopDownView view = TopDownView::fit(st, dy, o.png_resolution);
+    const std::vector<LegendEntry> legend = {
+        {cv::Scalar(200, 200, 200), "static (brighter = higher)"},
+        {cv::Scalar(0, 0, 255), "dynamic (removed)"}};
+    cv::Mat map = renderTopDown(view, st, dy), clean = renderTopDown(view, st, {});
+    drawLegendAndScale(map, view, legend);
+    drawLegendAndScale(clean, view, {legend[0]});
+    io::writePngAtomically(out + "map.png", map);
+    io::writePngAtomically(out + "static.png", clean);
+  }
   io::TumWriter tum(out + "poses.tum", "sensor pose in the world, as mapped by dynobj-mapclean");
   for (const FrameRecord& r : records) tum.write(r.timestamp_ns, r.sensor_pose);
   tum.close();
-  for (const char* f : {"map.png", "static.png", "poses.tum"}) sum.files.push_back(out + f);
+  for (const std::string& f : outputFiles(o))
+    if (f != o.export_kth && f != out + "cleaned.simplemap") sum.files.push_back(f);
   if (simplemap) {
     simplemap->close();
     sum.keyframes = simplemap->keyframes();

@@ -45,7 +45,7 @@ std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
       "check\n",
       s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
       s.backfilled, s.voted, s.seen_through);
-  if (o.write_simplemap) out += fmt("  cleaned simplemap: %zu keyframes\n", s.keyframes);
+  if (o.formats.simplemap) out += fmt("  cleaned simplemap: %zu keyframes\n", s.keyframes);
   if (!o.export_kth.empty())
     out += fmt("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,
                o.export_kth.c_str());

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dynobj/mapclean/PoseSource.h"
 #include "dynobj/mapclean/TopDownImage.h"
 
 namespace dynobj::mapclean {
@@ -76,14 +77,44 @@ MapOnActors countOnActors(const std::vector<MapPoint>& map, const ActorPoints& a
   return c;
 }
 
-cv::Mat renderSideBySide(const std::vector<MapPoint>& left, const std::string& left_caption,
-                         const std::vector<MapPoint>& right, const std::string& right_caption,
-                         const ActorPoints& actors, double resolution) {
+std::vector<bool> onActors(const std::vector<MapPoint>& map, const ActorPoints& actors) {
+  std::vector<bool> on(map.size());
+  for (std::size_t i = 0; i < map.size(); i++) on[i] = actors.onActor(map[i]);
+  return on;
+}
+
+std::vector<bool> seenThrough(const std::vector<MapPoint>& map, mrptio::FrameSource& source,
+                              const std::string& pose_spec, const VisibilityParams& p,
+                              std::string* poses_used) {
+  std::vector<VoxelCentre> candidates(map.size());
+  for (std::size_t i = 0; i < map.size(); i++) candidates[i] = {i, map[i].x, map[i].y, map[i].z};
+  MapVisibilityCheck check(p, std::move(candidates));
+  const auto poses = makePoseSource(pose_spec);
+  mrptio::SequenceOptions o;  // the detector runs for its ego-motion only
+  o.single_sensor = true;
+  source.rewind();
+  mrptio::SequenceRunner(source, o).run([&](const mrptio::FrameResult& r) {
+    check.addScan(r.frame.frame, poses->pose(r.frame, r.detection->ego_motion));
+  });
+  if (poses_used) *poses_used = poses->describe();
+  std::vector<bool> through(map.size(), false);
+  for (const std::uint64_t k : check.seenThrough()) through[k] = true;
+  return through;
+}
+
+cv::Mat renderSideBySide(const std::vector<MapPoint>& left, const std::vector<bool>& left_marked,
+                         const std::string& left_caption, const std::vector<MapPoint>& right,
+                         const std::vector<bool>& right_marked, const std::string& right_caption,
+                         const std::string& marked_means, double resolution) {
   const TopDownView view = TopDownView::fit(left, right, resolution);
-  const auto panel = [&](const std::vector<MapPoint>& map, const std::string& caption) {
+  const std::vector<LegendEntry> legend = {{cv::Scalar(200, 200, 200), "map (brighter = higher)"},
+                                           {cv::Scalar(0, 0, 255), marked_means}};
+  const auto panel = [&](const std::vector<MapPoint>& map, const std::vector<bool>& marked,
+                         const std::string& caption) {
     std::vector<MapPoint> still, moving;
-    for (const MapPoint& p : map) (actors.onActor(p) ? moving : still).push_back(p);
-    const cv::Mat img = renderTopDown(view, still, moving, 3);
+    for (std::size_t i = 0; i < map.size(); i++) (marked[i] ? moving : still).push_back(map[i]);
+    cv::Mat img = renderTopDown(view, still, moving, 3);
+    drawLegendAndScale(img, view, legend);
     cv::Mat out(img.rows + 30, img.cols, CV_8UC3, cv::Scalar(40, 40, 40));
     img.copyTo(out(cv::Rect(0, 30, img.cols, img.rows)));
     cv::putText(out, caption, {8, 21}, cv::FONT_HERSHEY_SIMPLEX, 0.6, {255, 255, 255}, 1);
@@ -91,7 +122,8 @@ cv::Mat renderSideBySide(const std::vector<MapPoint>& left, const std::string& l
   };
   cv::Mat both;
   cv::Mat gap(view.height + 30, 8, CV_8UC3, cv::Scalar(255, 255, 255));
-  cv::hconcat(std::vector<cv::Mat>{panel(left, left_caption), gap, panel(right, right_caption)},
+  cv::hconcat(std::vector<cv::Mat>{panel(left, left_marked, left_caption), gap,
+                                   panel(right, right_marked, right_caption)},
               both);
   return both;
 }

@@ -57,23 +57,32 @@ void CleanedSimplemapWriter::close() {
   io::commitPartial(path_);
 }
 
-void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& points) {
+namespace {
+
+mrpt::maps::CPointsMapXYZI toPointsMap(const std::vector<MapPoint>& points) {
   mrpt::maps::CPointsMapXYZI map;
   map.resize(points.size());
   for (std::size_t i = 0; i < points.size(); i++) {
     map.setPointFast(i, points[i].x, points[i].y, points[i].z);
     map.setPointIntensity(i, points[i].intensity);
   }
+  return map;
+}
+
+}  // namespace
+
+void writePointsMapFile(const std::string& file, const std::vector<MapPoint>& points) {
+  const mrpt::maps::CPointsMapXYZI map = toPointsMap(points);
   {
-    const std::string file = base + ".pointsmap";
-    {
-      mrpt::io::CFileGZOutputStream out;
-      if (!out.open(io::partialName(file))) throw std::runtime_error(io::cannotWriteMessage(file));
-      mrpt::serialization::archiveFrom(out) << map;
-    }
-    io::commitPartial(file);
+    mrpt::io::CFileGZOutputStream out;
+    if (!out.open(io::partialName(file))) throw std::runtime_error(io::cannotWriteMessage(file));
+    mrpt::serialization::archiveFrom(out) << map;
   }
-  const std::string txt = base + ".txt";
+  io::commitPartial(file);
+}
+
+void writePointsMapText(const std::string& txt, const std::vector<MapPoint>& points) {
+  const mrpt::maps::CPointsMapXYZI map = toPointsMap(points);
   if (!map.saveXYZI_to_text_file(io::partialName(txt))) {
     std::remove(io::partialName(txt).c_str());
     throw std::runtime_error(io::cannotWriteMessage(txt));

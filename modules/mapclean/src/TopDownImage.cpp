@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
@@ -70,6 +71,52 @@ cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& stat
     for (const MapPoint& p : dynamic_points)
       if (cell(p, r, c)) cv::circle(img, {c, r}, dynamic_radius, cv::Scalar(0, 0, 255), cv::FILLED);
   return img;
+}
+
+double scaleBarLength(double width_m) {
+  const double target = std::max(width_m / 5.0, 0.01);
+  double best = 0.01;
+  for (double decade = 0.01; decade <= target; decade *= 10)
+    for (const double m : {1.0, 2.0, 5.0})
+      if (m * decade <= target * (1 + 1e-9)) best = std::max(best, m * decade);
+  return best;
+}
+
+void drawLegendAndScale(cv::Mat& img, const TopDownView& view,
+                        const std::vector<LegendEntry>& legend) {
+  if (img.cols < 160 || img.rows < 80 || view.resolution <= 0) return;
+  const int font = cv::FONT_HERSHEY_SIMPLEX, line = 18, pad = 6;
+  const double scale = 0.45;
+  const cv::Scalar white(255, 255, 255), box(40, 40, 40);
+  // Legend, top left: a swatch and its text per entry.
+  int text_w = 0;
+  for (const LegendEntry& e : legend)
+    text_w = std::max(text_w, cv::getTextSize(e.text, font, scale, 1, nullptr).width);
+  if (!legend.empty()) {
+    const int h = pad * 2 + line * static_cast<int>(legend.size());
+    cv::rectangle(img, {0, 0}, {std::min(img.cols - 1, pad * 3 + 12 + text_w), h}, box,
+                  cv::FILLED);
+    for (std::size_t i = 0; i < legend.size(); i++) {
+      const int y = pad + line * static_cast<int>(i);
+      cv::rectangle(img, {pad, y + 3}, {pad + 12, y + 13}, legend[i].colour, cv::FILLED);
+      cv::putText(img, legend[i].text, {pad * 2 + 12, y + 13}, font, scale, white, 1,
+                  cv::LINE_AA);
+    }
+  }
+  // Scale bar, bottom left: scaleBarLength() metres, ticks at both ends, its length above it.
+  const double metres = scaleBarLength(img.cols * view.resolution);
+  const int len = static_cast<int>(std::lround(metres / view.resolution));
+  char label[32];
+  std::snprintf(label, sizeof(label), metres >= 1 ? "%.0f m" : "%.2f m", metres);
+  const int y = img.rows - 1 - pad, x0 = pad;
+  const int label_w = cv::getTextSize(label, font, scale, 1, nullptr).width;
+  cv::rectangle(img, {0, y - line - pad},
+                {std::min(img.cols - 1, x0 + std::max(len, label_w) + pad), img.rows - 1}, box,
+                cv::FILLED);
+  cv::line(img, {x0, y}, {x0 + len - 1, y}, white, 1);
+  cv::line(img, {x0, y - 4}, {x0, y}, white, 1);
+  cv::line(img, {x0 + len - 1, y - 4}, {x0 + len - 1, y}, white, 1);
+  cv::putText(img, label, {x0, y - 7}, font, scale, white, 1, cv::LINE_AA);
 }
 
 }  // namespace dynobj::mapclean

@@ -25,6 +25,20 @@
 
 namespace dynobj::mapclean {
 
+/// Which outputs runMapClean() writes (--formats); poses.tum is always written.
+struct MapFormats {
+  bool ply = true;         ///< static.ply, dynamic.ply (binary PLY: the compact map format)
+  bool pointsmap = false;  ///< static.pointsmap, dynamic.pointsmap (serialized CPointsMapXYZI)
+  bool txt = false;        ///< static.txt, dynamic.txt (x y z intensity text)
+  bool png = true;         ///< map.png, static.png (top views with legend and scale bar)
+  bool simplemap = true;   ///< cleaned.simplemap (keyframes for MRPT's map tools)
+
+  /// A comma-separated list of the names above, or "all". Throws std::invalid_argument naming
+  /// an unknown or missing name: `--formats: unknown format 'pyl' (did you mean 'ply'?)`.
+  static MapFormats parse(const std::string& list);
+  std::string toString() const;  ///< "ply,png,simplemap"
+};
+
 struct MapCleanOptions {
   std::string input;           ///< .rawlog or a KTH DynamicMap folder
   std::string out_dir;         ///< created if missing
@@ -41,7 +55,7 @@ struct MapCleanOptions {
   std::string ground_truth;  ///< label file v1 (rawlog input) or a labelled gt_cloud.pcd; "" = none
   double tolerance = 0.05;   ///< [m] metric: a GT point is kept when a map point is this close
   std::string export_kth;    ///< folder for the KTH export; "" = none
-  bool write_simplemap = true;
+  MapFormats formats;
   double keyframe_distance = 1.0;               ///< [m] cleaned simplemap keyframes
   double keyframe_angle = 30.0 * M_PI / 180.0;  ///< [rad]
   double png_resolution = 0.05;                 ///< [m/px]

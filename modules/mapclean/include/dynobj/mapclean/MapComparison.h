@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Before / after a filter, on a labelled sequence: how many points of a map (MRPT points-map text
-// dump, world frame, e.g. icp-slam's) lie on the moving actors — within 0.2 m of a ground-truth
-// dynamic point and more than 0.25 m above the floor (so the floor under the actors' feet does not
-// count) — and one top-down picture of the two maps side by side, those points in red. Ground
-// truth: the sequence's label file and TUM sensor poses (aligned by SequenceRunner).
+// Before / after a filter: two maps of one sequence (MRPT points-map text dumps, world frame, e.g.
+// icp-slam's on the raw and on the filtered rawlog), compared two ways, and one top-down picture
+// of the two side by side with the points counted in red:
+//  - with ground truth (the sequence's label file and TUM sensor poses): the points on the moving
+//    actors - within 0.2 m of a ground-truth dynamic point and more than 0.25 m above the floor
+//    (so the floor under the actors' feet does not count);
+//  - label-free (any recording): the points that the sweeps see through (MapVisibilityCheck's
+//    rule), each map checked with the poses that built it - the trails of moving objects are
+//    what later sweeps see through.
 #pragma once
 
 #include <dynobj/mrptio/FrameSource.h>
@@ -15,6 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/VoxelMap.h"
 
 namespace dynobj::mapclean {
@@ -43,11 +48,23 @@ struct MapOnActors {
   std::size_t points = 0, on_actors = 0;
 };
 MapOnActors countOnActors(const std::vector<MapPoint>& map, const ActorPoints& actors);
+/// Per map point: on a moving actor (ActorPoints::onActor).
+std::vector<bool> onActors(const std::vector<MapPoint>& map, const ActorPoints& actors);
 
-/// Both maps from above on one scale, side by side (grey by height; points on actors red), each
-/// under its caption.
-cv::Mat renderSideBySide(const std::vector<MapPoint>& left, const std::string& left_caption,
-                         const std::vector<MapPoint>& right, const std::string& right_caption,
-                         const ActorPoints& actors, double resolution = 0.05);
+/// Label-free, per map point: the sweeps of `source` see through it (MapVisibilityCheck's rule
+/// with `p`, every map point a candidate), the sweeps placed by `pose_spec` (PoseSource's specs:
+/// the TUM file or the simplemap of the run that built the map, "odometry", "ego"); the detector
+/// runs for the ego-motion when the spec needs it. `poses_used`, when given, receives the pose
+/// source's description. Throws naming the pose file / the scan without a pose.
+std::vector<bool> seenThrough(const std::vector<MapPoint>& map, mrptio::FrameSource& source,
+                              const std::string& pose_spec, const VisibilityParams& p = {},
+                              std::string* poses_used = nullptr);
+
+/// Both maps from above on one scale, side by side (grey by height; the marked points red, the
+/// legend says what they are), each under its caption, with a scale bar.
+cv::Mat renderSideBySide(const std::vector<MapPoint>& left, const std::vector<bool>& left_marked,
+                         const std::string& left_caption, const std::vector<MapPoint>& right,
+                         const std::vector<bool>& right_marked, const std::string& right_caption,
+                         const std::string& marked_means, double resolution = 0.05);
 
 }  // namespace dynobj::mapclean

@@ -40,7 +40,9 @@ class CleanedSimplemapWriter {
   Eigen::Isometry3d last_ = Eigen::Isometry3d::Identity();
 };
 
-/// Writes `<base>.pointsmap` (serialized CPointsMapXYZI, gzip) and `<base>.txt`, atomically.
-void writePointsMapFiles(const std::string& base, const std::vector<MapPoint>& points);
+/// Writes `file` (serialized CPointsMapXYZI, gzip), atomically.
+void writePointsMapFile(const std::string& file, const std::vector<MapPoint>& points);
+/// Writes `file` ("x y z intensity" lines, CPointsMapXYZI::saveXYZI_to_text_file), atomically.
+void writePointsMapText(const std::string& file, const std::vector<MapPoint>& points);
 
 }  // namespace dynobj::mapclean

@@ -28,4 +28,20 @@ struct TopDownView {
 cv::Mat renderTopDown(const TopDownView& view, const std::vector<MapPoint>& static_points,
                       const std::vector<MapPoint>& dynamic_points, int dynamic_radius = 0);
 
+/// A colour swatch and what it means, for drawLegendAndScale().
+struct LegendEntry {
+  cv::Scalar colour;  ///< BGR
+  std::string text;
+};
+
+/// The length [m] of a scale bar for an image `width_m` wide: the largest 1, 2 or 5 x 10^k that
+/// is at most a fifth of the width (at least 0.01 m).
+double scaleBarLength(double width_m);
+
+/// Draws on `img` (rendered with `view`): the legend's swatches and texts in the top-left corner
+/// and a scale bar of scaleBarLength() metres, labelled, in the bottom-left corner, both on a dark
+/// box. Nothing is drawn where the image is too small to hold them (under 160 x 80 px).
+void drawLegendAndScale(cv::Mat& img, const TopDownView& view,
+                        const std::vector<LegendEntry>& legend);
+
 }  // namespace dynobj::mapclean
