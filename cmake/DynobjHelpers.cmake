@@ -48,7 +48,7 @@ function(dynobj_add_unittests)
   endif()
   set(tgt dynobj_${ARG_MODULE}_unittests)
   add_executable(${tgt} ${ARG_SOURCES})
-  target_link_libraries(${tgt} PRIVATE dynobj::${ARG_MODULE} ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${tgt} PRIVATE dynobj::${ARG_MODULE} ${ARG_DEPS} dynobj_test_main)
   target_compile_definitions(${tgt} PRIVATE DYNOBJ_SHARE_DIR="${DYNOBJ_SHARE_DIR_BUILD}"
                                             DYNOBJ_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   dynobj_set_warnings(${tgt})
