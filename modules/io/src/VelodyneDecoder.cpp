@@ -171,12 +171,11 @@ void VelodyneDecoder::checkPacketPeriod(const std::string& source) {
     if (v.blocks_per_firing == sensor_.blocks_per_firing && fits(v))
       candidates += (candidates.empty() ? "" : ", ") + v.name;
   }
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.1f us", median);
-  throwFormatError(source, "the data packets come every " + std::string(buf) +
-                               " of sensor time, but a " + sensor_.name + " (model " +
-                               model_source_ + ") sends one every " +
-                               std::to_string(sensor_.packetPeriodUs(dual_)) + " us" +
+  char buf[96];
+  std::snprintf(buf, sizeof(buf), "%.1f us of sensor time, but one every %.2f us", median,
+                sensor_.packetPeriodUs(dual_));
+  throwFormatError(source, "the data packets come every " + std::string(buf) + " comes from the " +
+                               sensor_.name + " (model " + model_source_ + ")" +
                                (candidates.empty() ? std::string(" (no supported model fits)")
                                                    : "; models that fit: " + candidates) +
                                ". Give the model explicitly");

@@ -406,7 +406,9 @@ TEST(VelodyneDecoder, RefusesWhatItCannotDecode) {
   s = vlp16Spec();
   s.product = 0x21;
   const std::string e = first_packet_error(s);
-  EXPECT_NE(e.find("a HDL-32E (model product id 0x21) sends one every 552.96"), std::string::npos)
+  EXPECT_NE(e.find("every 1327.0 us of sensor time, but one every 552.96 us comes from the HDL-32E "
+                   "(model product id 0x21)"),
+            std::string::npos)
       << e;
   EXPECT_NE(e.find("models that fit: VLP-16, Puck Hi-Res"), std::string::npos) << e;
   // Dual-return HDL-64E.
