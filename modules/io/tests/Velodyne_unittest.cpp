@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "PcapTestFiles.h"
@@ -452,10 +454,12 @@ TEST(VelodynePcapReader, ReadsDataPortCountsPositionAndOthers) {
   }
   cap.udp(7502, std::string(100, '\0'));
   cap.record(pcap_test::Pcap::ethernet(std::string(28, '\0'), 0x0806));  // ARP
-  VelodynePcapReader reader(cap.save(tempPath("vlp16.pcap")), {});
+  const std::string path = cap.save(tempPath("vlp16.pcap"));
+  VelodynePcapReader reader(path, {});
   VelodyneScan scan;
   std::vector<VelodyneScan> scans;
   while (reader.next(scan)) scans.push_back(scan);
+  std::filesystem::remove(path);
   ASSERT_EQ(scans.size(), 1u);
   const auto& st = reader.stats();
   EXPECT_EQ(st.data_packets, 76u);
@@ -497,6 +501,7 @@ TEST(VelodynePcapReader, CaptureLevelErrors) {
   std::ofstream(text) << "not a capture\n";
   EXPECT_NE(errorOf([&] { VelodynePcapReader r(text, {}); }).find("not a readable pcap"),
             std::string::npos);
+  for (const auto& p : {path, cut_path, text}) std::filesystem::remove(p);
 }
 
 }  // namespace
