@@ -79,6 +79,13 @@ const char* toString(FrameFault f) {
   return "?";
 }
 
+std::string faultCounts(const std::map<FrameFault, std::size_t>& counts) {
+  std::string s;
+  for (const auto& [fault, n] : counts)
+    s += (s.empty() ? "" : ", ") + std::to_string(n) + " " + toString(fault);
+  return s;
+}
+
 std::string FrameWarning::text() const {
   return "sweep " + std::to_string(sweep) + ": " + message;
 }

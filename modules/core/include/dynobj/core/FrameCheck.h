@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "dynobj/core/DetectionResult.h"
@@ -15,6 +17,9 @@
 #include "dynobj/core/Params.h"
 
 namespace dynobj::core {
+
+/// "2 time reversal, 1 duplicate sweep": counts per fault for the tools' summaries ("" = none).
+std::string faultCounts(const std::map<FrameFault, std::size_t>& counts);
 
 struct FrameCheckParams : public StageParams {
   /// [s] a gap between two sweeps longer than this is a time jump: the tracks and the motion
