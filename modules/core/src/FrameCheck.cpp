@@ -134,21 +134,20 @@ FrameCheck::Verdict FrameCheck::check(const LidarFrame& f, long sweep,
   if (f.timestamp_ns != 0 && prev_stamp_ != 0) {
     const double dt = 1e-9 * static_cast<double>(f.timestamp_ns - prev_stamp_);
     const double period = 1.0 / f.sensor.frequency;
-    if (dt < 0) {
+    if (std::abs(dt) > p_.max_gap) {  // the clock jumped, ahead or back: start anew from here
+      warn(FrameFault::TimeJump, dt,
+           (dt > 0 ? "a gap of " : "time went back ") + fixed(std::abs(dt), 3) +
+               " s (more than max_gap " + fixed(p_.max_gap, 3) +
+               " s): the tracks and the motion history start anew");
+      verdict = Verdict::Restart;
+    } else if (dt < 0) {  // a sweep out of order: after a step back, at most max_gap of them
       warn(FrameFault::TimeReversal, -dt,
            "time went back " + fixed(-dt, 3) + " s: the sweep is not used for tracking");
       return Verdict::Skip;
-    }
-    if (dt == 0) {
+    } else if (dt == 0) {
       warn(FrameFault::DuplicateTime, 0,
            "the same timestamp as the sweep before: the sweep is not used for tracking");
       return Verdict::Skip;
-    }
-    if (dt > p_.max_gap) {
-      warn(FrameFault::TimeJump, dt,
-           "a gap of " + fixed(dt, 3) + " s (more than max_gap " + fixed(p_.max_gap, 3) +
-               " s): the tracks and the motion history start anew");
-      verdict = Verdict::Restart;
     } else if (dt >= kMissingPeriods * period) {
       warn(FrameFault::MissingSweeps, dt,
            "a gap of " + fixed(dt, 3) + " s: about " + fixed(std::round(dt / period) - 1, 0) +

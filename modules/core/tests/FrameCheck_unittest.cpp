@@ -113,6 +113,20 @@ TEST(FrameCheck, MissingSweepsWarnAndATimeJumpRestarts) {
   EXPECT_NEAR(jump.warnings[0].figure, 1.575, 1e-9);
 }
 
+TEST(FrameCheck, ClockStepsBackMoreThanMaxGapRestarts) {
+  FrameCheck check;  // max_gap 1 s: a recording replayed from its start is not skipped forever
+  run(check, sweep(kT0 + 40 * kPeriod), 0);
+  const Checked back = run(check, sweep(kT0, 0.1f), 1);
+  EXPECT_EQ(back.verdict, FrameCheck::Verdict::Restart);
+  ASSERT_EQ(back.warnings.size(), 1u);
+  EXPECT_EQ(back.warnings[0].fault, FrameFault::TimeJump);
+  EXPECT_NEAR(back.warnings[0].figure, -4.0, 1e-9);
+  EXPECT_EQ(back.warnings[0].text(),
+            "sweep 1: time went back 4.000 s (more than max_gap 1.000 s): the tracks and the "
+            "motion history start anew");
+  EXPECT_TRUE(run(check, sweep(kT0 + kPeriod, 0.2f), 2).warnings.empty());  // runs on from there
+}
+
 TEST(FrameCheck, UnstampedSweepsAreNotTimed) {
   FrameCheck check;
   run(check, sweep(0), 0);
@@ -163,7 +177,7 @@ TEST(FrameCheck, ZeroIntensityAfterIntensity) {
   EXPECT_EQ(c.warnings[0].fault, FrameFault::ZeroIntensity);
   dark.timestamp_ns += kPeriod;
   dark.range += 0.1f;
-  EXPECT_TRUE(run(check, dark, 2).warnings.empty());       // once, where it starts
+  EXPECT_TRUE(run(check, dark, 2).warnings.empty());   // once, where it starts
   LidarFrame no_channel = sweep(kT0 + kPeriod, 0.3f);  // a source without intensity
   no_channel.intensity.setTo(0);
   no_channel.has_intensity = false;

@@ -37,14 +37,14 @@ struct StageTimings {
 
 /// A fault of a sweep's data that FrameCheck found (docs/usage.md, "Faults of the data").
 enum class FrameFault {
-  TimeReversal,      ///< older than the sweep before: not used
+  TimeReversal,      ///< older than the sweep before (by max_gap at most): not used
   DuplicateTime,     ///< the same timestamp as the sweep before: not used
   DuplicateContent,  ///< the same ranges as the sweep before: not used
-  TimeJump,          ///< a gap longer than [frame_check] max_gap: tracks and motion start anew
-  MissingSweeps,     ///< a gap of 1.5 sweep periods or more, up to max_gap
-  LostColumns,       ///< columns without returns that had them: a partial or blocked sweep
-  WideSweep,         ///< more returns per pixel than the sweep before: more than 360 degrees
-  ZeroIntensity,     ///< every return's intensity 0, after a sweep with intensity
+  TimeJump,       ///< time ahead or back by more than [frame_check] max_gap: tracks and motion anew
+  MissingSweeps,  ///< a gap of 1.5 sweep periods or more, up to max_gap
+  LostColumns,    ///< columns without returns that had them: a partial or blocked sweep
+  WideSweep,      ///< more returns per pixel than the sweep before: more than 360 degrees
+  ZeroIntensity,  ///< every return's intensity 0, after a sweep with intensity
   EgoMotionFailures  ///< the ego-motion failed on max_ego_failures sweeps in a row
 };
 

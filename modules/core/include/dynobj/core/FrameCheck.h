@@ -22,8 +22,9 @@ namespace dynobj::core {
 std::string faultCounts(const std::map<FrameFault, std::size_t>& counts);
 
 struct FrameCheckParams : public StageParams {
-  /// [s] a gap between two sweeps longer than this is a time jump: the tracks and the motion
-  /// history start anew (a shorter gap of 1.5 sweep periods or more: missing sweeps, a warning)
+  /// [s] time ahead or back by more than this between two sweeps is a time jump: the tracks and
+  /// the motion history start anew (a shorter gap of 1.5 sweep periods or more: missing sweeps, a
+  /// warning; a shorter step back: the sweep is skipped)
   double max_gap = 1.0;
   /// [share 0-1] of the columns with returns in the sweep before that have none: a partial sweep
   /// or a blocked field of view (a warning)
