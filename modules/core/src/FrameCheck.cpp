@@ -157,7 +157,8 @@ FrameCheck::Verdict FrameCheck::check(const LidarFrame& f, long sweep,
   if (f.validCount() > 0 && sameRanges(f.range, prev_range_)) {
     warn(FrameFault::DuplicateContent, 0,
          "the same ranges as the sweep before: the sweep is not used for tracking");
-    return Verdict::Skip;
+    if (f.timestamp_ns != 0) prev_stamp_ = f.timestamp_ns;  // its time is right: a stale sensor
+    return Verdict::Skip;                                   // is not a time jump a second later
   }
   // Columns that had a return in the sweep before and have none now.
   if (prev_columns_.size() == columns.size()) {

@@ -94,6 +94,20 @@ TEST(FrameCheck, DuplicatesAreSkipped) {
   EXPECT_EQ(same_ranges.warnings[0].sweep, 2);
 }
 
+TEST(FrameCheck, AStaleSensorIsSkippedSweepBySweepNotTakenForATimeJump) {
+  FrameCheck check;  // the same ranges for 2 s, stamped every period: each one a duplicate
+  run(check, sweep(kT0), 0);
+  for (long k = 1; k <= 20; k++) {
+    const Checked c = run(check, sweep(kT0 + k * kPeriod), k);
+    EXPECT_EQ(c.verdict, FrameCheck::Verdict::Skip) << "sweep " << k;
+    ASSERT_EQ(c.warnings.size(), 1u);
+    EXPECT_EQ(c.warnings[0].fault, FrameFault::DuplicateContent);
+  }
+  const Checked back = run(check, sweep(kT0 + 21 * kPeriod, 0.1f), 21);
+  EXPECT_EQ(back.verdict, FrameCheck::Verdict::Use);
+  EXPECT_TRUE(back.warnings.empty());
+}
+
 TEST(FrameCheck, MissingSweepsWarnAndATimeJumpRestarts) {
   FrameCheck check;  // max_gap 1 s
   run(check, sweep(kT0), 0);
