@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# The evaluation matrix of issue #17: every scenario x seeds (1-5 by default since Session 25:
-# seeds 4 and 5 showed what seeds 1-3 had hidden) x every sensor preset x motion
+# The evaluation matrix: every scenario x seeds (1-5 by default: fewer seeds hid failures that
+# seeds 4 and 5 showed) x every sensor preset x motion
 # distortion off/on, each cell simulated (dynobj-sim --seed --set sensor=... --set
 # motion_distortion=...) and scored with the shipped detector configuration
 # (dynobj-eval --run <cell> --modes intensity), then one Markdown table with the mean and the

@@ -293,10 +293,10 @@ ego_error() {
   log "ego error: ${md}"
 }
 
-# Real recordings without labels (../shared/realdata/README.md): each folder of PCD sweeps is
-# imported (dynobj-import), then one dynobj-detect run per recording with the label-free checks:
+# Real recordings without labels (../shared/realdata/README.md): each folder of PCD sweeps or
+# Velodyne pcap is imported (dynobj-import), then one dynobj-detect run per recording with the label-free checks:
 # --consistency (eval::MapConsistency, top view written next to the rawlog; KITTI-derived, CC
-# BY-NC-SA: never commit it) and --check-ego (agreement with MRPT's 3D ICP).
+# BY-NC-SA: never commit it; the Velodyne one is Apache-2.0, docs/images/ holds a copy) and --check-ego (agreement with MRPT's 3D ICP).
 # A recording whose folder is absent is skipped with a message.
 REALDATA_DIR="${DYNOBJ_REALDATA:-$DYNOBJ_ROOT/../shared/realdata}"  # DYNOBJ_REALDATA: elsewhere
 realdata() {
@@ -304,7 +304,7 @@ realdata() {
   mkdir -p "$dir"
   {
     echo "<!-- made by: ${DYNOBJ_ACCURACY_CONFIG:+DYNOBJ_ACCURACY_CONFIG=$(basename "$CONFIG") }scripts/accuracy.sh --realdata -->"
-    echo "Per recording: \`dynobj-import -i <folder> -o <name>.rawlog\` (the sample is a rawlog already), then"
+    echo "Per recording: \`dynobj-import -i <folder or pcap> -o <name>.rawlog\` (the sample is a rawlog already), then"
     echo "\`dynobj-detect -i <name>.rawlog -c $(basename "$CONFIG") --consistency <name>.png --check-ego\`"
     echo
     echo "| recording | sweeps | flagged | suspicious (of flagged) | transient (of flagged) | unflagged but transient | ICP agreement (pairs) | median difference |"
@@ -312,7 +312,8 @@ realdata() {
   } > "$md.partial"
   # The committed simulated sample first: the checks' floor on data whose precision is known.
   for rec in "hall-small (simulated sample)|$DYNOBJ_ROOT/rawlogs/hall-small/hall-small.rawlog" \
-             "city-22|$REALDATA_DIR/kitti-hdl64-city-22" "data_2|${DYNOBJ_DATA2:-}"; do
+             "city-22|$REALDATA_DIR/kitti-hdl64-city-22" "data_2|${DYNOBJ_DATA2:-}" \
+             "monterey (real HDL-32E pcap, highway)|$REALDATA_DIR/velodyne/monterey-hdl32-first-100-packets.pcap"; do
     name="${rec%%|*}"
     src="${rec#*|}"
     if [ -z "$src" ]; then
@@ -326,7 +327,7 @@ realdata() {
     log "realdata: ${name} (${src})"
     local base="$dir/${name%% *}" rawlog="$src"
     rm -f "$base.png"
-    if [ -d "$src" ]; then
+    if [ -d "$src" ] || [[ "$src" == *.pcap ]]; then
       rm -f "$base.rawlog"
       "$BIN/dynobj-import" -i "$src" -o "$base.rawlog" -q > /dev/null
       rawlog="$base.rawlog"

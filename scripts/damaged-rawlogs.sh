@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# N damaged copies of the sample rawlog through rawlog-dynobj (issue #12): bits flipped, bytes
+# N damaged copies of the sample rawlog through rawlog-dynobj: bits flipped, bytes
 # zeroed or inserted, files cut short, in the gzip file and in the uncompressed stream (8 kinds,
 # seeded by the case number). Every case must end in exit 0 with an output MRPT reads to its end,
 # or exit 1 with a message naming the entry/byte: never a crash, a hang or a leftover .partial.

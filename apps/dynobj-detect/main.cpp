@@ -113,6 +113,8 @@ int run(int argc, char** argv) {
     if (pose_writer) pose_writer->write(f.timestamp_ns, *sensor_pose);
     const cv::Mat_<std::uint8_t> truth = fr.truthMask();
     const auto c = diag.add(f, r, truth);
+    std::cerr << dynobj::eval::DetectionDiagnostics::warningLines("dynobj-detect", fr.frame.where,
+                                                                  r);
     if (overlays.isSet()) {
       char name[64];
       std::snprintf(name, sizeof(name), "/frame_%06zu.png", fr.frame.index);
@@ -124,7 +126,7 @@ int run(int argc, char** argv) {
   });
   if (writer) writer->close();
   if (pose_writer) pose_writer->close();
-  std::cout << diag.summaryLine();
+  std::cout << diag.summaryLine() << diag.faultsLine();
   diag.timing().print(std::cout);
   if (ego_check) std::cout << "  ICP check: " << ego_check->summary().toString() << "\n";
   if (ego_truth.isSet()) std::cout << "  " << ego_error.toString() << "\n";

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// dynobj-import: a recording (folder of PCD / KITTI .bin sweeps, or an Ouster pcap + metadata
-// JSON) -> a stock MRPT rawlog that every dynobj tool reads without a sensor option
-// (dynobj::mrptio::importRecording; docs/usage.md, docs/formats.md "Importers").
+// dynobj-import: a recording (folder of PCD / KITTI .bin sweeps, an Ouster pcap + metadata
+// JSON, or a Velodyne pcap) -> a stock MRPT rawlog that every dynobj tool reads without a sensor
+// option (dynobj::mrptio::importRecording; docs/usage.md, docs/formats.md "Importers").
 #include <dynobj/core/SensorModel.h>
 #include <dynobj/io/SensorFile.h>
 #include <dynobj/mrptio/RecordingImporter.h>
@@ -17,12 +17,28 @@ namespace {
 int run(int argc, char** argv) {
   TCLAP::CmdLine cmd("dynobj-import: LiDAR recording -> MRPT rawlog (organized 3D scans)", ' ',
                      "0.1");
-  TCLAP::ValueArg<std::string> in("i", "input", "Folder of .pcd/.bin sweeps, or an Ouster .pcap",
-                                  true, "", "path", cmd);
+  TCLAP::ValueArg<std::string> in("i", "input",
+                                  "Folder of .pcd/.bin sweeps, or an Ouster / Velodyne .pcap", true,
+                                  "", "path", cmd);
   TCLAP::ValueArg<std::string> out("o", "output", "Output rawlog", true, "", "file.rawlog", cmd);
   TCLAP::SwitchArg overwrite("w", "overwrite", "Replace an existing output file", cmd);
   TCLAP::ValueArg<std::string> meta("", "meta", "Ouster sensor metadata JSON (for a pcap)", false,
                                     "", "file.json", cmd);
+  TCLAP::ValueArg<std::string> model("", "model",
+                                     "Velodyne pcap: the sensor model (default: from the "
+                                     "packets): vlp-16, puck-hi-res, vlp-32c, hdl-32e, "
+                                     "hdl-64e-s2, hdl-64e-s3, vls-128",
+                                     false, "", "name", cmd);
+  TCLAP::ValueArg<std::string> calib("", "calib",
+                                     "Velodyne pcap: the unit's calibration (db.xml) instead of "
+                                     "the manual's beam table; required for HDL-64E",
+                                     false, "", "db.xml", cmd);
+  TCLAP::ValueArg<std::string> dual("", "dual",
+                                    "Velodyne dual-return pcap: the return kept per laser "
+                                    "firing, strongest or last",
+                                    false, "strongest", "strongest|last", cmd);
+  TCLAP::ValueArg<int> port("", "port", "Velodyne pcap: UDP port of the data packets", false, 2368,
+                            "port", cmd);
   TCLAP::ValueArg<std::string> times("", "times",
                                      "Folder: one time per sweep (KITTI times.txt or "
                                      "timestamps.txt, or ns); default: --rate",
@@ -47,6 +63,10 @@ int run(int argc, char** argv) {
   dynobj::mrptio::ImportOptions o;
   o.input = in.getValue();
   o.meta = meta.getValue();
+  o.velodyne_model = model.getValue();
+  o.calib = calib.getValue();
+  o.dual = dual.getValue();
+  o.data_port = port.getValue();
   o.times = times.getValue();
   o.poses = poses.getValue();
   o.rate = rate.getValue();

@@ -29,9 +29,10 @@ std::size_t count(const std::vector<bool>& v) {
 }
 
 int run(int argc, char** argv) {
-  TCLAP::CmdLine cmd("dynobj-mapcompare: a map before and after a filter, label-free and against "
-                     "ground truth",
-                     ' ', "0.1");
+  TCLAP::CmdLine cmd(
+      "dynobj-mapcompare: a map before and after a filter, label-free and against "
+      "ground truth",
+      ' ', "0.1");
   TCLAP::ValueArg<std::string> in("i", "input", "The sequence's rawlog (the raw one)", true, "",
                                   "seq.rawlog", cmd);
   TCLAP::ValueArg<std::string> before("", "before", "Map before (points-map text: x y z a line)",
@@ -45,8 +46,8 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> after_poses("", "after-poses",
                                            "Label-free check: the poses that built the map after",
                                            false, "", "source", cmd);
-  TCLAP::ValueArg<std::string> gt("", "gt", "Ground truth (label file v1): points on actors",
-                                  false, "", "seq.gt.labels", cmd);
+  TCLAP::ValueArg<std::string> gt("", "gt", "Ground truth (label file v1): points on actors", false,
+                                  "", "seq.gt.labels", cmd);
   TCLAP::ValueArg<std::string> poses("", "poses", "The ground truth's sensor poses (TUM)", false,
                                      "", "seq.gt.tum", cmd);
   TCLAP::ValueArg<std::string> out("o", "output", "Side-by-side top-down PNG", false, "",
@@ -100,7 +101,8 @@ int run(int argc, char** argv) {
     caption_a = "before: " + share(count(marked_a), a.size()) + " " + means;
     caption_b = "after: " + share(count(marked_b), b.size()) + " " + means;
     dynobj::io::writePngAtomically(
-        out.getValue(), mc::renderSideBySide(a, marked_a, caption_a, b, marked_b, caption_b, means));
+        out.getValue(),
+        mc::renderSideBySide(a, marked_a, caption_a, b, marked_b, caption_b, means));
     std::printf("  -> %s\n", out.getValue().c_str());
   }
   return 0;

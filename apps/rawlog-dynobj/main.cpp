@@ -90,13 +90,18 @@ int run(int argc, char** argv) {
   o.allow_none = allow_none.isSet();
   const bool tty = !quiet.isSet() && isatty(STDERR_FILENO);
   const auto t0 = std::chrono::steady_clock::now();
-  if (tty)
-    o.progress = [&](std::size_t entries, const dynobj::mrptio::FilterSummary& sm) {
-      if (entries % 10 != 1) return;
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::fprintf(stderr, "\r[rawlog-dynobj] entry %zu, %zu LiDAR frames, %.1f frames/s   ",
-                   entries, sm.lidar, s > 0 ? static_cast<double>(sm.lidar) / s : 0.0);
-    };
+  std::size_t faults_printed = 0;  // the data faults (FrameCheck) are printed once each, always
+  o.progress = [&](std::size_t entries, const dynobj::mrptio::FilterSummary& sm) {
+    for (; faults_printed < sm.data_faults.size(); faults_printed++) {
+      const auto& [label, w] = sm.data_faults[faults_printed];
+      std::fprintf(stderr, "%srawlog-dynobj: warning: '%s' %s\n", tty ? "\r" : "", label.c_str(),
+                   w.text().c_str());
+    }
+    if (!tty || entries % 10 != 1) return;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "\r[rawlog-dynobj] entry %zu, %zu LiDAR frames, %.1f frames/s   ", entries,
+                 sm.lidar, s > 0 ? static_cast<double>(sm.lidar) / s : 0.0);
+  };
   const auto res = dynobj::mrptio::filterRawlog(in.getValue(), out.getValue(), o);
   if (tty) std::fprintf(stderr, "\n");
   const auto& sm = res.filter;
@@ -111,6 +116,8 @@ int run(int argc, char** argv) {
                 : 0.0,
       sm.passed_through, sm.lidar ? sm.detector_ms / static_cast<double>(sm.lidar) : 0.0);
   for (const auto& [msg, n] : sm.warnings) std::printf("  warning (%zux): %s\n", n, msg.c_str());
+  if (!sm.data_faults.empty())
+    std::printf("  data faults: %s\n", dynobj::core::faultCounts(sm.faultCounts()).c_str());
   if (sm.lidar == 0 && sm.passed_through == 0)
     std::printf("  note: no LiDAR observation%s was found; the output is a copy of the input\n",
                 sensor.labelSet() ? (" with label '" + sensor.label() + "'").c_str() : "");

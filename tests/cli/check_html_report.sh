@@ -6,7 +6,7 @@ set -eu
 report="$1"
 profile=$(mktemp -d)
 trap 'rm -rf "$profile"' EXIT
-dom=$(timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+dom=$(TMPDIR="$profile" timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
   --disable-background-networking --disable-component-update --disable-sync \
   --user-data-dir="$profile" --virtual-time-budget=5000 --dump-dom "file://$report" 2>/dev/null)
 total=$(printf '%s' "$dom" | sed -n 's/.*data-images="\([0-9]*\)".*/\1/p' | head -n1)

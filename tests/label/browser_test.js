@@ -101,7 +101,8 @@ async function main() {
     ['--headless', '--no-sandbox', '--disable-gpu', '--remote-debugging-pipe', '--no-first-run',
      '--disable-background-networking', '--disable-component-update', '--disable-sync',
      '--user-data-dir=' + profile, 'about:blank'],
-    {stdio: ['ignore', 'ignore', 'ignore', 'pipe', 'pipe']});
+    // Chromium's own temporary files go into the profile, removed at the end.
+    {stdio: ['ignore', 'ignore', 'ignore', 'pipe', 'pipe'], env: {...process.env, TMPDIR: profile}});
   children.push(chrome);
   const cdp = new Cdp(chrome);
   const {targetInfos} = await cdp.send('Target.getTargets');

@@ -114,17 +114,25 @@ DynamicObjectDetector::DynamicObjectDetector(const DetectorParams& params)
       chain_(static_cast<std::size_t>(
           std::max((params.movement.window + 1) * (params.tracking.max_missed + 1) + 2,
                    params.free_space.history() + 2))),
+      check_(params.frame_check),
       worker_(params.pipeline.threads > 1 && std::thread::hardware_concurrency() > 1) {
   params_.validate();
 }
 
 void DynamicObjectDetector::reset() {
+  forgetMotion();
+  tracks_.reset();
+  check_.reset();
+  frame_index_ = -1;
+  sweep_ = -1;
+  last_stamp_ = 0;
+}
+
+void DynamicObjectDetector::forgetMotion() {
   ego_.reset();
   refiner_.reset();
-  tracks_.reset();
+  tracks_.tracks().clear();
   chain_.clear();
-  frame_index_ = -1;
-  last_stamp_ = 0;
   last_motion_ = Eigen::Isometry3d::Identity();
   prev_dynamic_.release();
 }
@@ -159,15 +167,15 @@ const DetectionResult& DynamicObjectDetector::process(
     const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external_motion) {
   StageClock clock;
   const double dt = beginFrame(frame);  // seconds since the previous frame
+  if (dt == 0) return result_;          // a time reversal or a duplicate: not used (FrameCheck)
   DetectionResult& r = result_;
 
   // III-A-2: the normalised intensity f of Eq. (2)-(4), which the ego-motion's features use too.
   foreground_.normalize(frame);
   r.timings.foreground = clock.lap();
 
-  // III-B-1, Eq. (5): the ego-motion between the previous frame and this one, on the worker
-  // ([pipeline] threads = 2) while the ground, the features (III-A-2) and their clusters (III-B-2)
-  // are found here: nothing up to the association reads it.
+  // III-B-1, Eq. (5): the ego-motion since the last frame, on the worker (threads = 2) while the
+  // ground, features (III-A-2), clusters (III-B-2) are found: nothing before III-B-3 reads it.
   worker_.start([&] {
     StageClock ego_clock;
     r.ego_motion = egoMotion(frame, external_motion);
@@ -187,8 +195,7 @@ const DetectionResult& DynamicObjectDetector::process(
   const std::vector<int> split = associate(frame, dt);
   r.timings.association = clock.lap();
 
-  // III-C-1 and III-C-2, Eq. (14)-(23): movement over each track's sliding window; the clusters
-  // of the dynamic tracks are the seeds. The objects at rest keep their points (the next split).
+  // III-C-1, III-C-2, Eq. (14)-(23): movement over each track's window; dynamic tracks seed
   const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
   rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
   r.timings.movement = clock.lap();
@@ -230,13 +237,24 @@ std::vector<int> DynamicObjectDetector::grow(const LidarFrame& frame, double dt,
 
 double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
   DetectionResult& r = result_;
+  r.warnings.clear();
+  const FrameCheck::Verdict verdict = check_.check(frame, ++sweep_, r.warnings);
   r.objects.clear();
-  r.seen_static.clear();
   r.timestamp_ns = frame.timestamp_ns;
+  if (verdict == FrameCheck::Verdict::Skip) {  // the sweep before's dynamic pixels, no objects
+    if (r.dynamic.size() != frame.range.size())
+      r.dynamic = cv::Mat_<std::uint8_t>::zeros(frame.range.size());
+    r.ego_motion = EgoMotion{};
+    r.timings = StageTimings{};
+    return 0;
+  }
+  if (verdict == FrameCheck::Verdict::Restart) forgetMotion();
+  r.seen_static.clear();
   r.frame_index = ++frame_index_;
-  const double dt = (last_stamp_ != 0 && frame.timestamp_ns > last_stamp_)
-                        ? 1e-9 * static_cast<double>(frame.timestamp_ns - last_stamp_)
-                        : 1.0 / frame.sensor.frequency;
+  const double dt =
+      (verdict == FrameCheck::Verdict::Use && last_stamp_ != 0 && frame.timestamp_ns > last_stamp_)
+          ? 1e-9 * static_cast<double>(frame.timestamp_ns - last_stamp_)
+          : 1.0 / frame.sensor.frequency;
   last_stamp_ = frame.timestamp_ns;
   if (prev_dynamic_.size() != frame.range.size()) prev_dynamic_.release();
   r.dynamic.create(frame.range.size());
@@ -371,6 +389,8 @@ RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
 
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
   collectObjects(frame, grown);
+  check_.egoMotion(result_.ego_motion.ok || chain_.oldest() == frame_index_, sweep_,
+                   result_.warnings);  // the first sweep has no motion to fail
   free_space_.remember(frame_index_, frame, result_.ground);
   refiner_.remember(frame, result_.ground);
   ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time

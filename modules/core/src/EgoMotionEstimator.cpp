@@ -70,7 +70,10 @@ inline int hamming256(const std::uint8_t* a, const std::uint8_t* b) {
 
 /// The nearest and second-nearest of the candidate rows `js` of `prev` to descriptor `a`
 /// (Hamming distance): best = its row (-1 when none), d1 <= d2 their distances.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+/// No clones under ThreadSanitizer: GCC instruments the clones' ifunc resolver (a call to
+/// __tsan_func_entry), which the dynamic loader runs while relocating this library, before the
+/// TSan runtime is set up: a crash before main (docs/performance.md, "Sanitizers").
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
 __attribute__((target_clones("popcnt", "default")))
 #endif
 void bestTwo(const std::uint8_t* a, const cv::Mat& prev, const std::vector<int>& js, int& best,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/DetectionDiagnostics.h"
 
+#include <dynobj/core/FrameCheck.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
@@ -23,6 +25,7 @@ Confusion DetectionDiagnostics::add(const core::LidarFrame& f, const core::Detec
                                     const cv::Mat_<std::uint8_t>& truth) {
   timing_.add(r.timings);
   if (!r.ego_motion.ok && frames_ > 0) ego_failed_++;
+  for (const core::FrameWarning& w : r.warnings) faults_[w.fault]++;
   frames_++;
   rows_ = f.rows();
   cols_ = f.cols();
@@ -68,6 +71,19 @@ std::string DetectionDiagnostics::summaryLine() const {
   std::snprintf(b, sizeof(b), "dynobj-detect: %zu frames of %dx%d, ego-motion failed on %zu\n",
                 frames_, rows_, cols_, ego_failed_);
   return b;
+}
+
+std::string DetectionDiagnostics::warningLines(const std::string& app, const std::string& where,
+                                               const core::DetectionResult& r) {
+  std::string lines;
+  for (const core::FrameWarning& w : r.warnings)
+    lines += app + ": warning: sweep " + std::to_string(w.sweep) +
+             (where.empty() ? "" : " (" + where + ")") + ": " + w.message + "\n";
+  return lines;
+}
+
+std::string DetectionDiagnostics::faultsLine() const {
+  return faults_.empty() ? "" : "  data faults: " + core::faultCounts(faults_) + "\n";
 }
 
 std::string DetectionDiagnostics::metricsLines() const {

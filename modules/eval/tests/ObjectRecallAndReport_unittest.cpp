@@ -3,6 +3,7 @@
 #include <dynobj/eval/ObjectRecall.h>
 #include <dynobj/eval/Report.h>
 #include <dynobj/eval/SequenceMetrics.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
 
@@ -14,7 +15,7 @@ using namespace dynobj::eval;
 namespace {
 
 std::string writeTemp(const std::string& text) {
-  const std::string p = mrpt::system::getTempFileName() + ".csv";
+  const std::string p = dynobj::testing::scratchPath(".csv");
   std::ofstream(p) << text;
   return p;
 }

@@ -127,18 +127,25 @@ bool PcapReader::handleRecord(const std::uint8_t* p, std::size_t n, std::size_t 
     fail("bad IPv4 lengths (header " + std::to_string(ihl) + ", total " + std::to_string(total) +
          ")");
   if (ip[9] != 17) return skip();
-  if (total > avail && n >= wirelen)
-    fail("IPv4 total length " + std::to_string(total) + " but only " + std::to_string(avail) +
-         " bytes in the record");
-  const std::size_t captured = std::min(total, avail) - ihl;
-  const std::size_t announced = total - ihl;
+  const std::uint16_t flags = be16(ip + 6);
+  const bool more = (flags & 0x2000) != 0;
+  const std::size_t frag_off = std::size_t{flags & 0x1FFFu} * 8;
+  std::size_t total_used = total;
+  if (total > avail && n >= wirelen) {
+    if (more || frag_off != 0)
+      fail("IPv4 total length " + std::to_string(total) + " but only " + std::to_string(avail) +
+           " bytes in the record");
+    // A complete record whose IPv4 header overstates its length (early VLP-16 firmware writes
+    // 1234 into its 554-byte position packets): the record's length is the packet's.
+    stats_.ip_length_overstated++;
+    total_used = avail;
+  }
+  const std::size_t captured = std::min(total_used, avail) - ihl;
+  const std::size_t announced = total_used - ihl;
 
   out.record = stats_.records;
   out.time_ns = time_ns;
   out.fragments = 1;
-  const std::uint16_t flags = be16(ip + 6);
-  const bool more = (flags & 0x2000) != 0;
-  const std::size_t frag_off = std::size_t{flags & 0x1FFFu} * 8;
   if (!more && frag_off == 0) return emitUdp(ip + ihl, captured, announced, out);
 
   stats_.fragments++;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/io/AtomicFile.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
 
@@ -8,7 +9,7 @@
 using namespace dynobj::io;
 
 TEST(AtomicFile, CommitRenamesIntoPlaceAndLeavesNoPartial) {
-  const std::string p = ::mrpt::system::getTempFileName() + ".txt";
+  const std::string p = dynobj::testing::scratchPath(".txt");
   writeFileAtomically(p, "abc");
   std::ifstream in(p);
   std::string s;
@@ -18,7 +19,7 @@ TEST(AtomicFile, CommitRenamesIntoPlaceAndLeavesNoPartial) {
 }
 
 TEST(AtomicFile, UncommittedFileIsRemovedAndNothingAppearsUnderTheFinalName) {
-  const std::string p = ::mrpt::system::getTempFileName() + ".txt";
+  const std::string p = dynobj::testing::scratchPath(".txt");
   {
     AtomicFile f(p);
     f.stream() << "half";

@@ -3,6 +3,7 @@
 // AtomicFile / PartialPath is open removes its .partial and says what was being read.
 #include <dynobj/io/AtomicFile.h>
 #include <dynobj/io/CrashGuard.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
 #include <sys/wait.h>
@@ -51,7 +52,7 @@ bool crashExit(int status) {
 
 TEST(CrashGuardDeathTest, FatalSignalRemovesPartialsNamesTheEntryAndExitsWithCode3) {
   ::testing::FLAGS_gtest_death_test_style = "threadsafe";
-  const std::string base = ::mrpt::system::getTempFileName();
+  const std::string base = dynobj::testing::scratchPath("");
   const std::string file = base + ".rawlog", folder = base + "-frames";
   EXPECT_EXIT(crashWhileWriting(file, folder, SIGSEGV), crashExit,
               "guard-test: fatal error: SIGSEGV.*at entry 12 \\(byte 4534811\\) of "
@@ -63,7 +64,7 @@ TEST(CrashGuardDeathTest, FatalSignalRemovesPartialsNamesTheEntryAndExitsWithCod
 
 TEST(CrashGuardDeathTest, AbortIsCaughtToo) {
   ::testing::FLAGS_gtest_death_test_style = "threadsafe";
-  const std::string base = ::mrpt::system::getTempFileName();
+  const std::string base = dynobj::testing::scratchPath("");
   EXPECT_EXIT(crashWhileWriting(base + ".txt", base + "-d", SIGABRT),
               ::testing::ExitedWithCode(kCrashExitCode), "SIGABRT");
   EXPECT_FALSE(std::filesystem::exists(partialName(base + ".txt")));
@@ -72,7 +73,7 @@ TEST(CrashGuardDeathTest, AbortIsCaughtToo) {
 
 TEST(CrashGuardDeathTest, TerminationRemovesPartialsAndDiesOfTheSignal) {
   ::testing::FLAGS_gtest_death_test_style = "threadsafe";
-  const std::string base = ::mrpt::system::getTempFileName();
+  const std::string base = dynobj::testing::scratchPath("");
   EXPECT_EXIT(crashWhileWriting(base + ".txt", base + "-d", SIGTERM),
               ::testing::KilledBySignal(SIGTERM), "interrupted: SIGTERM");
   EXPECT_FALSE(std::filesystem::exists(partialName(base + ".txt")));
@@ -81,7 +82,7 @@ TEST(CrashGuardDeathTest, TerminationRemovesPartialsAndDiesOfTheSignal) {
 
 TEST(CrashGuard, CommittedAndDestroyedOutputsAreNoLongerRegistered) {
   // 64 slots: 200 files opened and committed in turn must not exhaust them.
-  const std::string base = ::mrpt::system::getTempFileName();
+  const std::string base = dynobj::testing::scratchPath("");
   for (int i = 0; i < 200; i++) {
     AtomicFile f(base + std::to_string(i));
     f.stream() << i;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/io/LabelFile.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/system/filesystem.h>
 
@@ -10,7 +11,7 @@ using namespace dynobj::io;
 namespace {
 
 std::string temp(const std::string& name) {
-  return ::mrpt::system::getTempFileName() + name;
+  return dynobj::testing::scratchPath("") + name;
 }
 
 std::string writeText(const std::string& text) {

@@ -12,25 +12,19 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "PcapTestFiles.h"
+
 using namespace dynobj::io;
 using Json = nlohmann::json;
+using pcap_test::Pcap;
+using pcap_test::put;
 
 namespace {
 
 constexpr int kRows = 4, kCols = 16, kPerPacket = 4;
 
-// Per-test names: CTest runs the tests of this binary as parallel processes.
 std::string tempPath(const std::string& name) {
-  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  return ::testing::TempDir() + "ouster_" + test->test_suite_name() + "_" + test->name() + "_" +
-         name;
-}
-
-void put(std::string& s, std::uint64_t v, int bytes, bool big_endian = false) {
-  for (int i = 0; i < bytes; i++) {
-    const int shift = 8 * (big_endian ? bytes - 1 - i : i);
-    s.push_back(static_cast<char>((v >> shift) & 0xFF));
-  }
+  return pcap_test::tempPath("ouster", name);
 }
 
 // The sensor: beam azimuths match the shifts (2 pi shift / W - azimuth = 0 for every row), so
@@ -102,51 +96,6 @@ std::string lidarPacket(const std::string& profile, int frame_id, int first_mid,
   if (!legacy) s.append(32, '\0');
   return s;
 }
-
-struct Pcap {
-  std::string bytes;
-  std::uint16_t ip_id = 1;
-  Pcap() {
-    put(bytes, 0xA1B2C3D4, 4), put(bytes, 2, 2), put(bytes, 4, 2), put(bytes, 0, 8);
-    put(bytes, 65535, 4), put(bytes, 1, 4);  // snap length, Ethernet
-  }
-  void record(const std::string& frame, std::size_t captured = std::string::npos) {
-    const std::size_t cap = std::min(captured, frame.size());
-    put(bytes, 1700000000, 4), put(bytes, 0, 4), put(bytes, cap, 4), put(bytes, frame.size(), 4);
-    bytes += frame.substr(0, cap);
-  }
-  static std::string ethernet(const std::string& payload, std::uint16_t type = 0x0800) {
-    std::string s(12, '\x02');
-    put(s, type, 2, true);
-    return s + payload;
-  }
-  std::string ipv4(const std::string& payload, std::uint16_t flags_offset) const {
-    std::string s;
-    put(s, 0x45, 1), put(s, 0, 1), put(s, 20 + payload.size(), 2, true), put(s, ip_id, 2, true);
-    put(s, flags_offset, 2, true), put(s, 64, 1), put(s, 17, 1), put(s, 0, 2);
-    put(s, 0xC0A80101, 4, true), put(s, 0xC0A80102, 4, true);
-    return s + payload;
-  }
-  // One UDP datagram; `fragmented`: two IPv4 fragments, the second one first.
-  void udp(std::uint16_t port, const std::string& payload, bool fragmented = false,
-           std::size_t captured = std::string::npos) {
-    std::string u;
-    put(u, 7502, 2, true), put(u, port, 2, true), put(u, 8 + payload.size(), 2, true), put(u, 0, 2);
-    u += payload;
-    if (fragmented) {
-      record(ethernet(ipv4(u.substr(64), 64 / 8)));
-      record(ethernet(ipv4(u.substr(0, 64), 0x2000)));  // more fragments
-    } else {
-      record(ethernet(ipv4(u, 0)), captured);
-    }
-    ip_id++;
-  }
-  std::string save(const std::string& name) const {
-    const std::string path = tempPath(name);
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-};
 
 // frames full frames of `profile` (frame ids 7, 8, ...), then the first packet of one more.
 Pcap capture(const std::string& profile, int frames, bool with_partial = true) {
@@ -316,7 +265,7 @@ TEST(OusterPcap, SingleReturnProfileWithFragmentedPacket) {
   const std::string profile = "RNG19_RFL8_SIG16_NIR16";
   OusterPcapReader::Stats st;
   const auto scans =
-      readAll(capture(profile, 2).save("single.pcap"), metaOf(metaJson(profile)), &st);
+      readAll(capture(profile, 2).save(tempPath("single.pcap")), metaOf(metaJson(profile)), &st);
   ASSERT_EQ(scans.size(), 2u);
   expectFrame(scans[0], 0, profile);
   expectFrame(scans[1], 1, profile);
@@ -353,7 +302,7 @@ TEST(OusterPcap, LegacyProfileFramesByFrameIdAndByWrap) {
   for (int k = 0; k < kCols / kPerPacket; k++)  // frame 1 again, same frame_id as frame 0
     p.udp(7502, lidarPacket("LEGACY", 7, k * kPerPacket, 1, k == 3 ? 13 : -1));
   OusterPcapReader::Stats st;
-  const auto scans = readAll(p.save("legacy.pcap"), metaOf(metaJson("LEGACY")), &st);
+  const auto scans = readAll(p.save(tempPath("legacy.pcap")), metaOf(metaJson("LEGACY")), &st);
   ASSERT_EQ(scans.size(), 2u);
   expectFrame(scans[0], 0, "LEGACY");  // range masked to 20 bits, 16-bit reflectivity
   EXPECT_EQ(scans[0].intensity_field, "signal");
@@ -364,7 +313,8 @@ TEST(OusterPcap, LegacyProfileFramesByFrameIdAndByWrap) {
 
 TEST(OusterPcap, LowBandwidthProfile) {
   const std::string profile = "RNG15_RFL8_NIR8";
-  const auto scans = readAll(capture(profile, 1).save("lb.pcap"), metaOf(metaJson(profile)));
+  const auto scans =
+      readAll(capture(profile, 1).save(tempPath("lb.pcap")), metaOf(metaJson(profile)));
   ASSERT_EQ(scans.size(), 1u);
   expectFrame(scans[0], 0, profile);  // range x 8 mm (flag bit 15 masked), near-IR x 16
   EXPECT_EQ(scans[0].intensity_field, "reflectivity");
@@ -376,27 +326,31 @@ TEST(OusterMalformed, PacketProblemsNameThePacket) {
   cut.udp(7502, lidarPacket("RNG15_RFL8_NIR8", 7, 0, 0));
   cut.udp(7502, lidarPacket("RNG15_RFL8_NIR8", 7, 4, 0), false, 100);
   EXPECT_NE(errorOf([&] {
-              readAll(cut.save("cut.pcap"), meta);
+              readAll(cut.save(tempPath("cut.pcap")), meta);
             }).find("packet 2: captured 58 of 176 bytes of a lidar packet"),
             std::string::npos);
   // RNG19 packets with RNG15 metadata: wrong size.
   EXPECT_NE(
-      errorOf([&] { readAll(capture("RNG19_RFL8_SIG16_NIR16", 1).save("size.pcap"), meta); })
+      errorOf(
+          [&] { readAll(capture("RNG19_RFL8_SIG16_NIR16", 1).save(tempPath("size.pcap")), meta); })
           .find("packet 1: lidar packet of 304 bytes, but profile RNG15_RFL8_NIR8 with 4 rows "
                 "and 4 columns per packet expects 176 bytes"),
       std::string::npos);
   Pcap other;  // metadata of another sensor
   other.udp(7502, lidarPacket("RNG15_RFL8_NIR8", 7, 0, 0, -1, 987654321));
-  EXPECT_NE(errorOf([&] { readAll(other.save("sn.pcap"), meta); }).find("packet 1: sensor serial"),
+  EXPECT_NE(errorOf([&] {
+              readAll(other.save(tempPath("sn.pcap")), meta);
+            }).find("packet 1: sensor serial"),
             std::string::npos);
   Pcap mid;  // measurement id 16 >= 16 columns
   mid.udp(7502, lidarPacket("RNG15_RFL8_NIR8", 7, 13, 0));
-  EXPECT_NE(errorOf([&] { readAll(mid.save("mid.pcap"), meta); }).find("measurement id 16"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { readAll(mid.save(tempPath("mid.pcap")), meta); }).find("measurement id 16"),
+      std::string::npos);
   Pcap imu;  // only IMU packets
   imu.udp(7503, std::string(48, '\0'));
   EXPECT_NE(errorOf([&] {
-              readAll(imu.save("imu.pcap"), meta);
+              readAll(imu.save(tempPath("imu.pcap")), meta);
             }).find("no UDP packets on the lidar port 7502; ports seen: 7503 (1)"),
             std::string::npos);
 }
@@ -406,7 +360,7 @@ TEST(OusterMalformed, CaptureCutAtTheEndIsCounted) {
   Pcap p = capture(profile, 1, false);
   p.bytes += p.bytes.substr(24, 100);  // a record header and part of its data
   OusterPcapReader::Stats st;
-  const auto scans = readAll(p.save("end.pcap"), metaOf(metaJson(profile)), &st);
+  const auto scans = readAll(p.save(tempPath("end.pcap")), metaOf(metaJson(profile)), &st);
   EXPECT_EQ(scans.size(), 1u);
   EXPECT_EQ(st.bad_packets, 1u);
 }
@@ -434,7 +388,7 @@ TEST(OusterMalformed, DamagedCapturesNeverCrash) {
     if (trial % 3 == 0) p.bytes.resize(rng() % good.size());
     for (int k = 0; k < 1 + trial % 5; k++)
       p.bytes[24 + rng() % (good.size() - 24)] = static_cast<char>(rng());
-    const std::string path = p.save("fuzz.pcap");
+    const std::string path = p.save(tempPath("fuzz.pcap"));
     try {
       readAll(path, meta);
       ok++;

@@ -173,6 +173,8 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
       records.push_back(FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}});
     } else {
       records.push_back(cleaner.record(*fr.detection, pose));
+      sum.data_faults.insert(sum.data_faults.end(), fr.detection->warnings.begin(),
+                             fr.detection->warnings.end());
     }
     if (!two_pass) {
       mapScan(s, records.back());

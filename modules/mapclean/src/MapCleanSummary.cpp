@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The text dynobj-mapclean prints after a job.
+#include <dynobj/core/FrameCheck.h>
+
 #include <cstdarg>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "dynobj/mapclean/MapCleanJob.h"
@@ -39,6 +42,14 @@ std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
     out += fmt(
         "  classification: label file '%s' (detector not run; %zu scans by unreviewed sweeps)\n",
         o.labels.c_str(), s.unreviewed_sweeps);
+  if (!s.data_faults.empty()) {
+    std::map<core::FrameFault, std::size_t> counts;
+    for (const core::FrameWarning& w : s.data_faults) {
+      out += "  warning: " + w.text() + "\n";
+      counts[w.fault]++;
+    }
+    out += "  data faults: " + core::faultCounts(counts) + "\n";
+  }
   out += fmt(
       "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
       "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "

@@ -94,13 +94,11 @@ void drawLegendAndScale(cv::Mat& img, const TopDownView& view,
     text_w = std::max(text_w, cv::getTextSize(e.text, font, scale, 1, nullptr).width);
   if (!legend.empty()) {
     const int h = pad * 2 + line * static_cast<int>(legend.size());
-    cv::rectangle(img, {0, 0}, {std::min(img.cols - 1, pad * 3 + 12 + text_w), h}, box,
-                  cv::FILLED);
+    cv::rectangle(img, {0, 0}, {std::min(img.cols - 1, pad * 3 + 12 + text_w), h}, box, cv::FILLED);
     for (std::size_t i = 0; i < legend.size(); i++) {
       const int y = pad + line * static_cast<int>(i);
       cv::rectangle(img, {pad, y + 3}, {pad + 12, y + 13}, legend[i].colour, cv::FILLED);
-      cv::putText(img, legend[i].text, {pad * 2 + 12, y + 13}, font, scale, white, 1,
-                  cv::LINE_AA);
+      cv::putText(img, legend[i].text, {pad * 2 + 12, y + 13}, font, scale, white, 1, cv::LINE_AA);
     }
   }
   // Scale bar, bottom left: scaleBarLength() metres, ticks at both ends, its length above it.

@@ -56,7 +56,8 @@ TEST(MapFormats, OutputFilesFollowTheFormats) {
   o.out_dir = "out";
   o.formats = MapFormats::parse("txt");
   const auto files = outputFiles(o);
-  EXPECT_EQ(files, (std::vector<std::string>{"out/static.txt", "out/dynamic.txt", "out/poses.tum"}));
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"out/static.txt", "out/dynamic.txt", "out/poses.tum"}));
   o.formats = MapFormats{};
   const auto def = outputFiles(o);
   EXPECT_TRUE(has(def, "out/static.ply") && has(def, "out/map.png") &&

@@ -41,7 +41,14 @@ FilterSummary& FilterSummary::operator+=(const FilterSummary& o) {
   for (const auto& [msg, n] : o.warnings) warnings[msg] += n;
   detector_ms += o.detector_ms;
   for (const auto& [what, n] : o.seen) seen[what] += n;
+  data_faults.insert(data_faults.end(), o.data_faults.begin(), o.data_faults.end());
   return *this;
+}
+
+std::map<core::FrameFault, std::size_t> FilterSummary::faultCounts() const {
+  std::map<core::FrameFault, std::size_t> counts;
+  for (const auto& [label, w] : data_faults) counts[w.fault]++;
+  return counts;
 }
 
 void FilterSummary::see(const mobs::CObservation& obs) {
@@ -177,6 +184,8 @@ void DynamicObjectFilter::tag(const mobs::CObservation::Ptr& obs, const core::Li
     }
   }
   summary_.lidar++;
+  for (const core::FrameWarning& w : r.warnings)
+    summary_.data_faults.emplace_back(obs->sensorLabel, w);
   summary_.points += point_mask.size();
   summary_.dynamic_points += n_dynamic;
   if (split && extra) {

@@ -248,6 +248,9 @@ FilterSummary difference(const FilterSummary& after, const FilterSummary& before
   d.dynamic_points = after.dynamic_points - before.dynamic_points;
   d.passed_through = after.passed_through - before.passed_through;
   d.detector_ms = after.detector_ms - before.detector_ms;
+  d.data_faults.assign(
+      after.data_faults.begin() + static_cast<std::ptrdiff_t>(before.data_faults.size()),
+      after.data_faults.end());
   return d;
 }
 

@@ -45,7 +45,7 @@ struct Job {
 };
 using JobPtr = std::shared_ptr<Job>;
 
-/// Counts, times (no warnings) that `after` has more than `before`.
+/// Counts, times and data faults (no warnings) that `after` has more than `before`.
 FilterSummary difference(const FilterSummary& after, const FilterSummary& before);
 
 /// Detects task `t` with `filter` (converting its observation first unless it was converted

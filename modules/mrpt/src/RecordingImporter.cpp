@@ -4,9 +4,11 @@
 #include <dynobj/io/FormatError.h>
 #include <dynobj/io/OusterPcapReader.h>
 #include <dynobj/io/PoseFile.h>
+#include <dynobj/io/VelodynePcapReader.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/VelodyneCalibration.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -16,6 +18,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -130,10 +133,8 @@ ImportSummary importFolder(const ImportOptions& o, const std::string& output,
   return s;
 }
 
-ImportSummary importPcap(const ImportOptions& o, const std::string& output,
-                         const ImportProgress& progress) {
-  if (o.meta.empty())
-    throw std::runtime_error("'" + o.input + "' is a pcap: give its sensor metadata JSON (--meta)");
+ImportSummary importOuster(const ImportOptions& o, const std::string& output,
+                           const ImportProgress& progress) {
   const io::OusterMetadata meta = io::OusterMetadata::load(o.meta);
   io::OusterPcapReader reader(o.input, meta);
   const core::SensorModel model = meta.sensorModel();
@@ -157,6 +158,92 @@ ImportSummary importPcap(const ImportOptions& o, const std::string& output,
                           " partial frames skipped)");
   writer.commit();
   return s;
+}
+
+/// A Velodyne unit calibration (db.xml) through MRPT's reader: elevation and rotCorrection per
+/// laser [deg]. MRPT 2.5.8's YAML reader cannot read a file (loadFromYAMLText treats the text as
+/// a path), so only XML is accepted.
+void loadVelodyneCalibration(const std::string& path, io::VelodyneOptions& v) {
+  if (!fs::exists(path)) throw std::runtime_error("'" + path + "' does not exist");
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".yaml" || ext == ".yml")
+    throw io::FormatError(path +
+                          ": give the unit's db.xml (MRPT 2.5 cannot read YAML "
+                          "calibrations)");
+  mrpt::obs::VelodyneCalibration cal;
+  if (!cal.loadFromXMLFile(path) || cal.laser_corrections.empty())
+    throw io::FormatError(path + ": not a Velodyne calibration (db.xml) MRPT can read");
+  for (const auto& lc : cal.laser_corrections) {
+    v.elevation_deg.push_back(lc.verticalCorrection);
+    v.azimuth_correction_deg.push_back(lc.azimuthCorrection);
+  }
+  v.calibration_source = path;
+}
+
+ImportSummary importVelodyne(const ImportOptions& o, const std::string& output,
+                             const ImportProgress& progress) {
+  io::VelodynePcapReader::Options v;
+  if (!o.velodyne_model.empty()) {
+    v.decoder.model = io::VelodyneSensor::fromName(o.velodyne_model);
+    if (!v.decoder.model)
+      throw std::invalid_argument("unknown Velodyne model '" + o.velodyne_model +
+                                  "' (known: " + io::VelodyneSensor::modelNames() + ")");
+  }
+  if (o.dual == "strongest" || o.dual == "last")
+    v.decoder.dual = o.dual == "last" ? io::DualReturn::Last : io::DualReturn::Strongest;
+  else
+    throw std::invalid_argument("--dual must be 'strongest' or 'last', not '" + o.dual + "'");
+  if (!o.calib.empty()) loadVelodyneCalibration(o.calib, v.decoder);
+  v.data_port = o.data_port;
+  io::VelodynePcapReader reader(o.input, v);
+  ImportSummary s;
+  std::optional<core::SphericalProjection> organizer;
+  std::optional<SweepWriter> writer;
+  io::VelodyneScan scan;
+  core::LidarFrame frame;
+  try {
+    while (reader.next(scan)) {
+      if (!organizer) {
+        organizer.emplace(reader.decoder().sensorModel());
+        writer.emplace(o, output, 0);
+      }
+      const core::ProjectionStats st = organizer->organize(scan.cloud, frame);
+      frame.timestamp_ns = scan.timestamp_ns;
+      writer->write(frame, st, s);
+      if (progress) progress(s.sweeps, 0);
+    }
+  } catch (const io::FormatError& e) {
+    const std::string what = e.what();
+    if (what.find("no Velodyne data packets") != std::string::npos)
+      throw io::FormatError(what + " (an Ouster capture needs its metadata JSON: --meta)");
+    throw;
+  }
+  const io::VelodynePcapReader::Stats& st = reader.stats();
+  if (s.sweeps == 0)
+    throw io::FormatError(o.input + ": no complete sweep (" +
+                          std::to_string(st.partial_frames_skipped) +
+                          " partial sweeps of less than 180 deg skipped)");
+  const io::VelodyneDecoder& d = reader.decoder();
+  char freq[32];
+  std::snprintf(freq, sizeof(freq), "%.2f Hz", d.frequencyHz());
+  s.source = "Velodyne pcap '" + o.input + "' (" + d.sensor().name + ", model " + d.modelSource() +
+             ", " + freq + "; " + std::to_string(st.data_packets) + " data + " +
+             std::to_string(st.position_packets) + " position packets, " +
+             std::to_string(st.partial_frames_skipped) + " partial sweeps skipped" +
+             (d.dualReturn() ? ", dual return: kept the " + o.dual + " (" +
+                                   std::to_string(st.second_returns_dropped) + " dropped)"
+                             : std::string()) +
+             ")";
+  s.rows_from = o.calib.empty() ? "the " + d.sensor().name + " beam table of its user manual"
+                                : "calibration '" + o.calib + "'";
+  s.intensity = "Velodyne intensity 0-255";
+  writer->commit();
+  return s;
+}
+
+ImportSummary importPcap(const ImportOptions& o, const std::string& output,
+                         const ImportProgress& progress) {
+  return o.meta.empty() ? importVelodyne(o, output, progress) : importOuster(o, output, progress);
 }
 
 }  // namespace

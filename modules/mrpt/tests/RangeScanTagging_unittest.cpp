@@ -4,6 +4,7 @@
 #include <dynobj/mrptio/ObservationConverter.h>
 #include <dynobj/mrptio/ObservationTagging.h>
 #include <dynobj/mrptio/RangeScanLayout.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/io/lazy_load_path.h>
@@ -138,7 +139,7 @@ TEST(RangeScanTagging, BadInputsAreErrors) {
 
 TEST(DynamicObjectFilter, ExternallyStoredScansPassThroughWithAWarning) {
   auto scan = std::make_shared<mobs::CObservation3DRangeScan>(fullScan());
-  const std::string dir = mrpt::system::getTempFileName() + "_ext";
+  const std::string dir = dynobj::testing::scratchPath("_ext");
   mrpt::system::createDirectory(dir);
   mrpt::io::setLazyLoadPathBase(dir + "/");
   scan->points3D_convertToExternalStorage("pts.bin", dir + "/");

@@ -5,6 +5,7 @@
 #include <dynobj/mrptio/RawlogFilter.h>
 #include <dynobj/mrptio/RawlogReader.h>
 #include <dynobj/mrptio/RawlogWriter.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -21,7 +22,7 @@ const std::string kSample = DYNOBJ_SOURCE_DIR "/rawlogs/hall-small/hall-small.ra
 constexpr std::size_t kEntries = 24;  // 12 sweeps + 12 odometry
 
 std::string tempPath(const std::string& name) {
-  return mrpt::system::getTempFileName() + "_" + name;
+  return dynobj::testing::scratchPath("_") + name;
 }
 
 /// A deep copy (pixel labels included) with another sensor label.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/mrptio/RawlogReader.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
@@ -22,7 +23,7 @@ using dynobj::mrptio::RawlogReader;
 namespace {
 
 std::string tempPath(const std::string& name) {
-  return mrpt::system::getTempFileName() + "_" + name;
+  return dynobj::testing::scratchPath("_") + name;
 }
 
 /// Writes `n` comment observations (plain, uncompressed, so byte offsets are predictable).

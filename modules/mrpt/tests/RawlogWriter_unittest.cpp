@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/mrptio/RawlogReader.h>
 #include <dynobj/mrptio/RawlogWriter.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <isa-l/igzip_lib.h>
 #include <mrpt/io/CFileGZInputStream.h>
@@ -23,7 +24,7 @@ using dynobj::mrptio::RawlogWriter;
 namespace {
 
 std::string tempPath(const std::string& name) {
-  return mrpt::system::getTempFileName() + "_" + name;
+  return dynobj::testing::scratchPath("_") + name;
 }
 
 /// Comment i: ~`size` bytes of text that compresses somewhat (a counter among repeated words).

@@ -24,7 +24,9 @@ class FakeFrames : public dm::FrameSource {
     s.rows = 8;
     s.cols = 32;
     f.frame = LidarFrame(s);
-    for (int c = 0; c < 32; c++) f.frame.setPixel(4, c, 5.f, 100.f, cv::Vec3f(5.f, 0.f, 0.f), c);
+    // Ranges differ from sweep to sweep: an exact repeat is a duplicate sweep (core::FrameCheck).
+    const float r = 5.f + 0.01f * static_cast<float>(k_);
+    for (int c = 0; c < 32; c++) f.frame.setPixel(4, c, r, 100.f, cv::Vec3f(r, 0.f, 0.f), c);
     f.frame.timestamp_ns = 1000000000 + 100000000LL * k_;
     f.index = static_cast<std::size_t>(k_);
     f.sensor_label = labels_[static_cast<std::size_t>(k_) % labels_.size()];

@@ -5,6 +5,7 @@
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
 #include <dynobj/sim/TopView.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/system/filesystem.h>
@@ -87,7 +88,7 @@ TEST(LidarSimulator, SequenceFilesRoundTrip) {
       base("actors:\n  - {class: pedestrian, trajectory: {type: waypoints, points: [[5, -2], [5, "
            "2]], speed: 1}}\n",
            "{trajectory: {type: waypoints, points: [[0, 0], [3, 0]], speed: 1, loop: false}}")));
-  const std::string dir = ::mrpt::system::getTempFileName() + "_seq";
+  const std::string dir = dynobj::testing::scratchPath("_seq");
   std::vector<SimulatedSweep> sweeps;
   {
     SequenceWriter w(dir, sim.scenario());

@@ -6,6 +6,7 @@
 #include <dynobj/mrptio/RawlogReader.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
@@ -95,7 +96,7 @@ TEST(SensorTraits, UnitBeamErrorsFromTheSeed) {
 
 TEST(SensorTraits, PointCloudOutputInFiringOrderReadsBackAsTheSameImage) {
   const LidarSimulator sim(load(base(kRoom + "output: point_cloud\n")));
-  const std::string dir = ::mrpt::system::getTempFileName() + "_pc";
+  const std::string dir = dynobj::testing::scratchPath("_pc");
   std::vector<SimulatedSweep> sweeps;
   {
     SequenceWriter w(dir, sim.scenario());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <dynobj/sim/Scenario.h>
+#include <dynobj/testing/ScratchPath.h>
 #include <mrpt/system/filesystem.h>
 
 #include <cmath>
@@ -15,7 +16,7 @@ constexpr double kDeg = M_PI / 180.0;
 
 /// 8 beams from +14 to -14 deg (4 deg apart), 64 columns, written to a temporary preset.
 inline std::string tinySensorFile() {
-  const std::string path = ::mrpt::system::getTempFileName() + "_tiny.ini";
+  const std::string path = dynobj::testing::scratchPath("_tiny.ini");
   std::ofstream(path) << "[sensor]\nmodel = tiny\nrows = 8\ncols = 64\nelevation_top = 14\n"
                          "elevation_bottom = -14\nmin_range = 0.2\nmax_range = 80\n";
   return path;

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "dynobj/core/EgoMotion.h"
@@ -34,6 +35,32 @@ struct StageTimings {
   // foreground and clustering stages do: the total (wall time) is then less than their sum.
 };
 
+/// A fault of a sweep's data that FrameCheck found (docs/usage.md, "Faults of the data").
+enum class FrameFault {
+  TimeReversal,      ///< older than the sweep before (by max_gap at most): not used
+  DuplicateTime,     ///< the same timestamp as the sweep before: not used
+  DuplicateContent,  ///< the same ranges as the sweep before: not used
+  TimeJump,       ///< time ahead or back by more than [frame_check] max_gap: tracks and motion anew
+  MissingSweeps,  ///< a gap of 1.5 sweep periods or more, up to max_gap
+  LostColumns,    ///< columns without returns that had them: a partial or blocked sweep
+  WideSweep,      ///< more returns per pixel than the sweep before: more than 360 degrees
+  ZeroIntensity,  ///< every return's intensity 0, after a sweep with intensity
+  EgoMotionFailures  ///< the ego-motion failed on max_ego_failures sweeps in a row
+};
+
+/// "time reversal", "duplicate timestamp", ... (the summaries' names).
+const char* toString(FrameFault f);
+
+struct FrameWarning {
+  FrameFault fault = FrameFault::TimeReversal;
+  long sweep = 0;       ///< the detector's sweep number (0-based; every sweep given to process())
+  double figure = 0;    ///< the figure that triggered it, in the unit `message` names
+  std::string message;  ///< e.g. "time went back 0.300 s: the sweep is not used"
+
+  /// "sweep <sweep>: <message>".
+  std::string text() const;
+};
+
 struct DetectionResult {
   std::int64_t timestamp_ns = 0;
   long frame_index = 0;
@@ -47,6 +74,8 @@ struct DetectionResult {
   std::vector<int> seen_static;
   EgoMotion ego_motion;
   StageTimings timings;
+  /// What FrameCheck found wrong with this sweep's data; empty on clean data.
+  std::vector<FrameWarning> warnings;
 
   /// A copy that shares no pixel data with this one (the detector reuses its images).
   DetectionResult clone() const;

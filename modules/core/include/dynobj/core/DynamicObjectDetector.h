@@ -17,6 +17,7 @@
 #include "dynobj/core/EgoMotionRefiner.h"
 #include "dynobj/core/ForegroundExtractor.h"
 #include "dynobj/core/FrameChain.h"
+#include "dynobj/core/FrameCheck.h"
 #include "dynobj/core/FreeSpaceCheck.h"
 #include "dynobj/core/GroundSegmenter.h"
 #include "dynobj/core/Hindsight.h"
@@ -53,6 +54,7 @@ struct DetectorParams {
   TrackingParams tracking;
   RegionGrowingParams region_growing;
   HindsightParams hindsight;  ///< used by offline runs (SequenceRunner), not by the detector
+  FrameCheckParams frame_check;
   PipelineParams pipeline;
 
   /// Calls f(section name, stage parameters) for every stage, in pipeline order.
@@ -69,6 +71,7 @@ struct DetectorParams {
     f("tracking", tracking);
     f("region_growing", region_growing);
     f("hindsight", hindsight);
+    f("frame_check", frame_check);
     f("pipeline", pipeline);
   }
   template <class F>
@@ -88,6 +91,9 @@ class DynamicObjectDetector {
 
   /// Processes the next frame. `external_motion`: T_{prev<-cur} from odometry or SLAM, used
   /// instead of the intensity ego-motion. The returned reference is valid until the next call.
+  /// Faults of the data (FrameCheck) are in its warnings: a time reversal or a duplicate is not
+  /// used for tracking (the result keeps the sweep before's dynamic pixels, and no objects); a
+  /// time jump starts the tracks and the motion history anew (track ids go on).
   const DetectionResult& process(
       const LidarFrame& frame,
       const std::optional<Eigen::Isometry3d>& external_motion = std::nullopt);
@@ -96,8 +102,11 @@ class DynamicObjectDetector {
   const DetectorParams& params() const { return params_; }
 
  private:
-  /// Frame index, result and buffers reset for `frame`; returns the seconds since the last frame.
+  /// The frame check, then frame index, result and buffers reset for `frame`; returns the seconds
+  /// since the last frame, or 0 for a sweep the check skips (its result is then final).
   double beginFrame(const LidarFrame& frame);
+  /// A time jump: the tracks (their ids go on), the ego-motion and the frame chain start anew.
+  void forgetMotion();
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
   /// The stages beside the ego-motion: ground (III-C-3's stop), features (III-A-2, Eq. 2-4),
   /// clusters (III-B-2, Eq. 6-7), each timed.
@@ -116,7 +125,8 @@ class DynamicObjectDetector {
                      const std::vector<int>& cluster_to_track);
   /// Decides every associated track (movement, free space, hysteresis); the clusters of the
   /// dynamic ones and the weak seeds of coasting dynamic tracks, also marked in result_.seeds
-  /// (their track ids in seed_track_).
+  /// (their track ids in seed_track_). The objects at rest keep their points for the next
+  /// sweep's split (rememberShapes, after it).
   std::vector<std::vector<int>> dynamicSeeds(const LidarFrame& frame, double dt);
   /// Beyond the paper (§8, [region_growing] past_surface_check): the test region growing asks of
   /// each pixel beyond the seeds: not a point the lookback frame saw on a surface, for an object
@@ -146,6 +156,7 @@ class DynamicObjectDetector {
   RegionGrower grower_;
   SettledSplitParams split_;
   FrameChain chain_;
+  FrameCheck check_;
   StageWorker worker_;  ///< runs egoMotion() ([pipeline] threads)
 
   DetectionResult result_;
@@ -155,7 +166,8 @@ class DynamicObjectDetector {
   cv::Mat_<int> owner_;
   std::vector<int> seed_track_;
   std::vector<int> held_;  ///< sorted pixels of resting objects in a mover's cluster (splitSettled)
-  long frame_index_ = -1;
+  long frame_index_ = -1;  ///< of the sweeps used (consecutive in chain_)
+  long sweep_ = -1;        ///< of every sweep given to process() (FrameWarning::sweep)
   std::int64_t last_stamp_ = 0;
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
 };

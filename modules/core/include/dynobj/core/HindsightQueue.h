@@ -7,6 +7,7 @@
 // (Hindsight::settle) and released to the caller, oldest first, in the order frames came in.
 // Several sensors share the queue (the release order stays the arrival order); each is revised
 // and settled on its own frames only. With lag = 0 every frame is released at once, unrevised.
+// A frame after a time jump (core::FrameCheck) releases every held frame first (finish()).
 #pragma once
 
 #include <algorithm>
@@ -49,6 +50,10 @@ class HindsightQueue {
       release(now);
       return;
     }
+    // A time jump (FrameCheck): the tracks start anew with this frame, the held ones are final.
+    if (std::any_of(result.warnings.begin(), result.warnings.end(),
+                    [](const FrameWarning& w) { return w.fault == FrameFault::TimeJump; }))
+      finish(release);
     held_.push_back(Item{std::move(sensor), std::move(data), std::move(result)});
     hindsight_.revise(heldOf(held_.back().sensor), false);
     releaseHeld(release, false);

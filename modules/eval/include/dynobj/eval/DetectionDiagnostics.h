@@ -9,6 +9,7 @@
 #include <dynobj/core/TimingStats.h>
 
 #include <cstddef>
+#include <map>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -28,6 +29,12 @@ class DetectionDiagnostics {
                                const Confusion& c);
   /// "dynobj-detect: N frames of HxW, ego-motion failed on K\n".
   std::string summaryLine() const;
+  /// The frame's data warnings (core::FrameCheck), one line each: "<app>: warning: sweep N
+  /// (<where>): <message>\n"; "" on clean data.
+  static std::string warningLines(const std::string& app, const std::string& where,
+                                  const core::DetectionResult& r);
+  /// "  data faults: 2 time reversal, 1 duplicate sweep\n", or "" when there was none.
+  std::string faultsLine() const;
   /// With ground truth: the metrics line and the seeds / misses line; else "".
   std::string metricsLines() const;
 
@@ -40,6 +47,7 @@ class DetectionDiagnostics {
   bool truth_ = false;
   int rows_ = 0, cols_ = 0;
   std::size_t frames_ = 0, ego_failed_ = 0, fn_grow_ = 0, fn_missed_ = 0;
+  std::map<core::FrameFault, std::size_t> faults_;
 };
 
 }  // namespace dynobj::eval

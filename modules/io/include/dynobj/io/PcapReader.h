@@ -8,7 +8,9 @@
 // header mid-file, an IPv4 / UDP header whose lengths are impossible in a complete record.
 // What is counted and skipped: records that are not IPv4/UDP (ARP, IPv6, TCP, ...); a record
 // cut off by the end of the file (a capture that was stopped while writing: reading ends
-// there); fragments whose datagram never completes. A datagram captured shorter than its
+// there); fragments whose datagram never completes; an unfragmented IPv4 packet whose header
+// announces more bytes than its complete record holds (early VLP-16 firmware: 1234 in its
+// position packets), which is read with the record's length. A datagram captured shorter than its
 // headers announce (snap length) is returned with `truncated` set: the caller decides.
 #pragma once
 
@@ -35,13 +37,14 @@ class PcapReader {
     int fragments = 1;          ///< IPv4 fragments it was reassembled from
   };
   struct Stats {
-    std::size_t records = 0;            ///< pcap records read
-    std::size_t datagrams = 0;          ///< UDP datagrams returned
-    std::size_t not_udp = 0;            ///< records that are not IPv4/UDP
-    std::size_t fragments = 0;          ///< records holding an IPv4 fragment
-    std::size_t reassembled = 0;        ///< datagrams built from several fragments
-    std::size_t fragments_dropped = 0;  ///< fragments of datagrams that never completed
-    std::size_t truncated_at_end = 0;   ///< 1 if the file ends inside a record
+    std::size_t records = 0;               ///< pcap records read
+    std::size_t datagrams = 0;             ///< UDP datagrams returned
+    std::size_t not_udp = 0;               ///< records that are not IPv4/UDP
+    std::size_t fragments = 0;             ///< records holding an IPv4 fragment
+    std::size_t reassembled = 0;           ///< datagrams built from several fragments
+    std::size_t fragments_dropped = 0;     ///< fragments of datagrams that never completed
+    std::size_t truncated_at_end = 0;      ///< 1 if the file ends inside a record
+    std::size_t ip_length_overstated = 0;  ///< complete records read with their own length
   };
 
   /// Opens the capture; FormatError if it cannot be read or is not a pcap / pcapng file.

@@ -72,6 +72,7 @@ struct MapCleanSummary {
   std::optional<MapScores> scores;
   std::string poses;                  ///< description of the pose source
   std::size_t unreviewed_sweeps = 0;  ///< with labels: scans classified by unreviewed sweeps
+  std::vector<core::FrameWarning> data_faults;  ///< the detector's (core::FrameCheck), in order
   double seconds = 0;
   std::vector<std::string> files;  ///< written
 };
@@ -80,7 +81,8 @@ struct MapCleanSummary {
 using MapCleanProgress =
     std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
-/// What dynobj-mapclean prints: scans, pose source, map sizes, simplemap, export, metrics, time.
+/// What dynobj-mapclean prints: scans, pose source, the data faults (one line each, and their
+/// counts), map sizes, simplemap, export, metrics, time.
 std::string summaryText(const MapCleanSummary& summary, const MapCleanOptions& opts);
 
 /// The files runMapClean() writes into opts.out_dir (and the KTH export folder).

@@ -39,13 +39,18 @@ struct FilterSummary {
   std::size_t dynamic_points = 0;  ///< of which dynamic (flagged, removed or restored)
   std::size_t passed_through = 0;  ///< LiDAR observations left untouched (see warnings)
   std::map<std::string, std::size_t> warnings;  ///< message -> count
-  double detector_ms = 0;                       ///< total detector time
+  /// Faults of the data (core::FrameCheck) of the LiDAR observations tagged, in tagging order:
+  /// (sensor label, warning).
+  std::vector<std::pair<std::string, core::FrameWarning>> data_faults;
+  double detector_ms = 0;  ///< total detector time
   /// Every observation seen, by "'<label>' (<class>)" -> count: what a run that filtered nothing
   /// found instead.
   std::map<std::string, std::size_t> seen;
 
-  /// Adds the counts, times, warnings and observations seen of `other`.
+  /// Adds the counts, times, warnings, data faults and observations seen of `other`.
   FilterSummary& operator+=(const FilterSummary& other);
+  /// data_faults by fault, for summaries (core::faultCounts).
+  std::map<core::FrameFault, std::size_t> faultCounts() const;
   /// Counts `obs` in `seen`.
   void see(const mrpt::obs::CObservation& obs);
   /// The error of a run that filtered no LiDAR frame (of `sensor_label`, when not empty): the

@@ -3,8 +3,9 @@
 // a sensor option: every sweep becomes the organized CObservation3DRangeScan of docs/formats.md
 // §4, rows fitting the real sensor (core::RowRecovery for point clouds, the Ouster metadata's
 // beam table for pcaps). Sources: a folder of PCD or KITTI .bin files (dynobj::io::CloudFolder),
-// an Ouster pcap + metadata JSON (dynobj::io::OusterPcapReader). An optional poses file becomes
-// one CObservationOdometry (SE(2) part of the pose) before each sweep.
+// an Ouster pcap + metadata JSON (dynobj::io::OusterPcapReader), a Velodyne pcap
+// (dynobj::io::VelodynePcapReader; a pcap without metadata JSON is read as Velodyne). An optional
+// poses file becomes one CObservationOdometry (SE(2) part of the pose) before each sweep.
 #pragma once
 
 #include <dynobj/core/SensorModel.h>
@@ -17,9 +18,15 @@
 namespace dynobj::mrptio {
 
 struct ImportOptions {
-  std::string input;  ///< folder of *.pcd / *.bin, or an Ouster .pcap
-  std::string meta;   ///< Ouster metadata JSON (required for a pcap)
-  std::string times;  ///< folder: times file (see io::CloudFolder); empty = `rate`
+  std::string input;  ///< folder of *.pcd / *.bin, or an Ouster / Velodyne .pcap
+  std::string meta;   ///< Ouster metadata JSON (required for an Ouster pcap)
+  /// Velodyne pcap: the model (io::VelodyneSensor::fromName); empty = from the packets.
+  std::string velodyne_model;
+  /// Velodyne pcap: the unit's calibration (Velodyne db.xml, read by MRPT); required for HDL-64E.
+  std::string calib;
+  std::string dual = "strongest";  ///< Velodyne dual-return captures: "strongest" or "last"
+  int data_port = 2368;            ///< Velodyne pcap: UDP port of the data packets
+  std::string times;               ///< folder: times file (see io::CloudFolder); empty = `rate`
   std::string poses;  ///< KITTI 3x4 or TUM file, one pose per sweep (or by time for TUM)
   std::optional<core::SensorModel> sensor;  ///< point clouds: rows/cols hint (else recovered)
   std::string sensor_file;                  ///< where `sensor` came from, for messages
