@@ -3,7 +3,8 @@
 // frame readers on numpy arrays. Glue only: parameters and presets through the library's strict
 // readers, sweeps through ArraySweeps (the library's conversions), the offline mode through
 // mrptio::SequenceRunner (one step per frame), errors as Python exceptions (std::invalid_argument
-// and core::ParameterError: ValueError), the GIL released while the library works.
+// and core::ParameterError: ValueError), faults of the data (core::FrameCheck) as Python warnings
+// (dynobj.DataFaultWarning), the GIL released while the library works.
 #include <dynobj/core/Config.h>
 #include <dynobj/core/DynamicObjectDetector.h>
 #include <dynobj/io/IniFile.h>
@@ -197,6 +198,22 @@ py::dict timingsDict(const core::StageTimings& t) {
   return d;
 }
 
+/// dynobj.DataFaultWarning (a UserWarning), set when the module is loaded.
+PyObject* data_fault_warning = nullptr;
+
+/// The faults of the data FrameCheck found in a sweep, as Python warnings (as the tools print
+/// them on stderr): "sweep 12: the same ranges as the sweep before: the sweep is not used".
+void warnFaults(const std::vector<std::string>& texts) {
+  for (const std::string& t : texts)
+    if (PyErr_WarnEx(data_fault_warning, t.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+std::vector<std::string> faultTexts(const core::DetectionResult& r) {
+  std::vector<std::string> out;
+  for (const core::FrameWarning& w : r.warnings) out.push_back(w.text());
+  return out;
+}
+
 py::list tracksList(const std::vector<core::TrackedObject>& objects) {
   py::list out;
   for (const core::TrackedObject& o : objects) {
@@ -227,13 +244,16 @@ class Detector {
     const ArrayView view = viewOf(points, keep);
     const std::int64_t ns = nanosecondsOf(timestamp);
     Mask mask;
+    std::vector<std::string> faults;
     {
       py::gil_scoped_release free;
       const std::lock_guard<std::mutex> lock(mutex_);
       sweeps_.convert(view, ns, frame_);
       last_ = &detector_.process(frame_.frame);
       mask = ArraySweeps::maskOf(frame_, last_->dynamic);
+      faults = faultTexts(*last_);
     }
+    warnFaults(faults);
     return maskArray(mask);
   }
 
@@ -302,7 +322,8 @@ class Sequence {
         }
         py::gil_scoped_release free;
         done_ = !runner_.step([&](const mrptio::FrameResult& fr) {
-          ready_.push_back(ArraySweeps::maskOf(fr.frame, fr.detection->dynamic));
+          ready_.push_back(Ready{ArraySweeps::maskOf(fr.frame, fr.detection->dynamic),
+                                 faultTexts(*fr.detection)});
         });
       } catch (...) {
         done_ = true;  // a sequence that failed gives no further mask
@@ -310,9 +331,16 @@ class Sequence {
         throw;
       }
     }
-    Mask m = std::move(ready_.front());
+    Ready r = std::move(ready_.front());
     ready_.pop_front();
-    return maskArray(m);
+    try {
+      warnFaults(r.faults);
+    } catch (...) {  // warnings made errors: the sequence ends here, as on any error
+      done_ = true;
+      ready_.clear();
+      throw;
+    }
+    return maskArray(r.mask);
   }
 
  private:
@@ -324,10 +352,15 @@ class Sequence {
     return o;
   }
 
+  struct Ready {  ///< a released sweep: its mask and its data's faults
+    Mask mask;
+    std::vector<std::string> faults;
+  };
+
   py::iterator it_;
   IterableSource source_;
   mrptio::SequenceRunner runner_;
-  std::deque<Mask> ready_;
+  std::deque<Ready> ready_;
   std::size_t given_ = 0;
   bool done_ = false;
 };
@@ -399,6 +432,17 @@ PYBIND11_MODULE(dynobj, m) {
   m.attr("__version__") = DYNOBJ_VERSION;
   m.attr("SEMANTIC_KITTI_STATIC") = dynobj::io::semantic_kitti::kStatic;
   m.attr("SEMANTIC_KITTI_MOVING") = dynobj::io::semantic_kitti::kMoving;
+  // The module's attribute holds the class (the pointer stays valid while the module lives).
+  const py::object fault_warning = py::reinterpret_steal<py::object>(PyErr_NewExceptionWithDoc(
+      "dynobj.DataFaultWarning",
+      "A fault of the data (docs/usage.md, 'Faults of the data'): a duplicate sweep (the same "
+      "ranges as the sweep before: not used, its mask is the sweep before's), a time jump (the "
+      "tracks start anew), missing sweeps, lost columns, ... The message names the sweep "
+      "(0-based, every sweep given). Timestamps that do not increase are a ValueError.",
+      PyExc_UserWarning, nullptr));
+  if (!fault_warning) throw py::error_already_set();
+  m.attr("DataFaultWarning") = fault_warning;
+  data_fault_warning = fault_warning.ptr();
 
   py::class_<Detector>(m, "Detector",
                        "The detector, online (causal): one sweep at a time, in time order.")

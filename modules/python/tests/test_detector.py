@@ -3,6 +3,7 @@
 # and every user mistake a ValueError naming the bad shape, dtype, key, value or timestamp.
 import os
 import threading
+import warnings
 import time
 
 import numpy as np
@@ -180,3 +181,17 @@ def test_an_organized_array_that_is_not_the_presets_size_is_a_value_error():
     with pytest.raises(ValueError, match=r"64x1024 but the sensor preset .* is 64x512"):
         dynobj.Detector(sensor=OS0_64_512).process(np.zeros((64, 1024, 4), np.float32), 0.1)
 
+
+def test_faults_of_the_data_are_warnings_naming_the_sweep(hall_sweeps):
+    (a, _), (b, _), (c, _) = hall_sweeps[:3]
+    d = dynobj.Detector()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # clean data: no warning
+        first = d.process(unordered(a), 0.1)
+        second = d.process(unordered(b), 0.2)
+    with pytest.warns(dynobj.DataFaultWarning, match="sweep 2: the same ranges"):
+        repeat = d.process(unordered(b), 0.3)  # a stale sensor repeating its sweep
+    assert np.array_equal(repeat, second)  # not used: the sweep before's mask
+    with pytest.warns(dynobj.DataFaultWarning, match=r"sweep 3: a gap of 4\.700 s"):
+        d.process(unordered(c), 5.0)
+    assert issubclass(dynobj.DataFaultWarning, UserWarning) and first.shape == (len(unordered(a)),)

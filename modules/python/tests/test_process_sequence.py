@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # dynobj.process_sequence: the offline loop (SequenceRunner) over a Python iterable: masks in
 # order, one per sweep, streamed as the hindsight lag releases them; lag 0 = dynobj.Detector.
+import warnings
+
 import numpy as np
 import pytest
 
@@ -59,3 +61,17 @@ def test_bad_items_are_value_errors_and_end_the_sequence(hall_sweeps):
     with pytest.raises(ValueError, match="unknown key 'hindsight.lagg'"):
         dynobj.process_sequence([], config={"hindsight.lagg": 0})
 
+
+def test_faults_of_the_data_are_warnings_and_as_errors_end_the_sequence(hall_sweeps):
+    pts = [unordered(image) for image, _ in hall_sweeps[:3]]
+    sweeps = [(pts[0], 0.1), (pts[1], 0.2), (pts[1], 0.3), (pts[2], 0.4)]
+    with pytest.warns(dynobj.DataFaultWarning, match="sweep 2: the same ranges") as record:
+        masks = list(dynobj.process_sequence(sweeps))
+    assert len(masks) == 4 and len(record) == 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        it = dynobj.process_sequence(sweeps)
+        with pytest.raises(dynobj.DataFaultWarning, match="sweep 2"):
+            list(it)
+        with pytest.raises(StopIteration):
+            next(it)
