@@ -17,6 +17,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <deque>
@@ -248,7 +249,11 @@ class Detector {
     {
       py::gil_scoped_release free;
       const std::lock_guard<std::mutex> lock(mutex_);
+      const auto start = std::chrono::steady_clock::now();
       sweeps_.convert(view, ns, frame_);
+      conversion_ms_ =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       last_ = &detector_.process(frame_.frame);
       mask = ArraySweeps::maskOf(frame_, last_->dynamic);
       faults = faultTexts(*last_);
@@ -258,13 +263,19 @@ class Detector {
   }
 
   py::list tracks() const { return last_ ? tracksList(last_->objects) : py::list(); }
-  py::dict timings() const { return last_ ? timingsDict(last_->timings) : py::dict(); }
+  py::dict timings() const {
+    if (!last_) return py::dict();
+    py::dict d = timingsDict(last_->timings);
+    d["conversion"] = conversion_ms_;
+    return d;
+  }
 
  private:
   core::DynamicObjectDetector detector_;
   ArraySweeps sweeps_;
   mrptio::Frame frame_;
   const core::DetectionResult* last_ = nullptr;
+  double conversion_ms_ = 0;  ///< the last sweep's array -> frame conversion (not in 'total')
   std::mutex mutex_;
 };
 
@@ -459,7 +470,10 @@ PYBIND11_MODULE(dynobj, m) {
       .def("tracks", &Detector::tracks,
            "The objects tracked in the last sweep: dicts with id, box (center, size) [m], "
            "centroid [m], velocity (vx, vy) [m/s], dynamic, at_rest, points, age.")
-      .def("timings", &Detector::timings, "The last sweep's time per stage [ms] ('total').");
+      .def("timings", &Detector::timings,
+           "The last sweep's time per stage [ms]: the detector's stages and their 'total' (as "
+           "dynobj-detect -v reports it), and 'conversion', the array's conversion into the "
+           "detector's frame before it (rows recovered, projected; not in 'total').");
 
   py::class_<Sequence>(m, "Sequence")
       .def("__iter__", [](py::object self) { return self; })

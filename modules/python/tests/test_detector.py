@@ -69,7 +69,10 @@ def test_tracks_describe_the_flagged_objects(hall_sweeps):
             assert (mask & inside).sum() > 0  # its points are flagged
             assert np.hypot(*tr["velocity"]) > 0.1
     assert dynamic_seen > 5
-    assert d.timings()["total"] > 0
+    t = d.timings()
+    assert t["total"] > 0 and t["conversion"] > 0
+    assert set(t) >= {"foreground", "ego_motion", "clustering", "region_growing", "conversion"}
+    assert dynobj.Detector().timings() == {}  # before the first sweep
 
 
 def test_the_gil_is_released_while_the_detector_runs(hall_sweeps):
