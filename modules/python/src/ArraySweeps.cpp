@@ -76,7 +76,12 @@ void ArraySweeps::convert(const ArrayView& a, std::int64_t timestamp_ns, mrptio:
       fillUnordered(static_cast<const double*>(a.data), a.rows, cloud);
     else
       fillUnordered(static_cast<const float*>(a.data), a.rows, cloud);
-    f.stats = projector_.project(cloud, f.frame);
+    try {
+      f.stats = projector_.project(cloud, f.frame);
+    } catch (const std::invalid_argument& e) {  // no row rule applies (the tools: "give --sensor")
+      throw std::invalid_argument(std::string("points: ") + e.what() +
+                                  "; give the sensor preset (sensor=...)");
+    }
   }
   f.frame.timestamp_ns = timestamp_ns;
   last_ns_ = timestamp_ns;

@@ -124,6 +124,15 @@ def test_a_list_or_an_empty_array_is_a_value_error():
         dynobj.Detector().process(np.zeros((0, 4), np.float32), 0.1)
 
 
+def test_a_sweep_whose_rows_cannot_be_recovered_asks_for_the_sensor(hall_sweeps):
+    pts = unordered(hall_sweeps[0][0])
+    shuffled = pts[np.random.default_rng(3).permutation(len(pts))]  # no firing order, no ring
+    with pytest.raises(ValueError, match=r"^points: .*rows cannot be recovered.*sensor="):
+        dynobj.Detector().process(shuffled, 0.1)
+    mask = dynobj.Detector(sensor=OS0_64_512).process(shuffled, 0.1)  # the preset's table
+    assert mask.shape == (len(pts),)
+
+
 def test_timestamps_must_increase_and_be_times(hall_sweeps):
     image, _ = hall_sweeps[0]
     pts = unordered(image)
