@@ -9,7 +9,7 @@ DYNOBJ_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # Why each package is needed: docs/architecture.md, "Dependencies".
 DYNOBJ_PACKAGES=(cmake make g++ libmrpt-dev mrpt-apps mrpt-common libopencv-dev libeigen3-dev
                  libnanoflann-dev libgtest-dev libpcap-dev nlohmann-json3-dev libisal-dev zlib1g-dev
-                 libcpp-httplib-dev)
+                 libcpp-httplib-dev pybind11-dev python3-dev python3-numpy python3-pytest)
 
 log() { printf '[dynobj] %s\n' "$*"; }
 # intensity_model_of <sensor preset>: the intensity model of its make (Velodyne presets vlp-*,

@@ -68,22 +68,8 @@ class ThreadsArg {
   mutable TCLAP::ValueArg<int> arg_;  // TCLAP's getters are not const
 };
 
-/// The detector's parameters from `ini` (defaults when empty), sections prefixed by `section`,
-/// and those of `extra` (section name, its parameters) from the same file. Throws when the file
-/// does not exist, or a value, key or section is bad (io::IniFile: "file:line: unknown key ...").
-/// With a prefix, sections that neither start with it nor resemble one of ours are left alone.
-inline core::DetectorParams loadDetectorParams(
-    const std::string& ini, const std::string& section = "",
-    std::initializer_list<std::pair<const char*, core::StageParams*>> extra = {}) {
-  core::DetectorParams p;
-  if (ini.empty()) return p;
-  io::IniFile file(ini, "config file");
-  file.expectDetector(section);
-  for (const auto& [name, params] : extra) file.expect(name, params->keys());
-  file.check(section);
-  p.load(file.config(), section);
-  for (const auto& [name, params] : extra) params->loadFromConfigFile(file.config(), name);
-  return p;
-}
+/// The detector's parameters from an INI file (io::loadDetectorParams: strict, errors name the
+/// file and line).
+using io::loadDetectorParams;
 
 }  // namespace dynobj::apps

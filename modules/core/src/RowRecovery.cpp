@@ -326,4 +326,68 @@ ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorMo
   return cloud.isOrganized() ? projection.organize(cloud, frame) : projection.project(cloud, frame);
 }
 
+namespace {
+
+/// Fills the NaN entries of a per-row table by linear interpolation between the nearest measured
+/// rows (extrapolated at the ends); false when fewer than two rows were measured or the result
+/// does not descend strictly from row to row.
+bool completeTable(std::vector<double>& t) {
+  std::vector<std::size_t> known;
+  for (std::size_t r = 0; r < t.size(); r++)
+    if (!std::isnan(t[r])) known.push_back(r);
+  if (known.size() < 2) return false;
+  for (std::size_t r = 0; r < t.size(); r++) {
+    if (!std::isnan(t[r])) continue;
+    auto hi = std::lower_bound(known.begin(), known.end(), r);
+    if (hi == known.end()) hi--;
+    if (hi == known.begin()) hi++;
+    const std::size_t a = *(hi - 1), b = *hi;
+    t[r] = t[a] + (t[b] - t[a]) * (static_cast<double>(r) - static_cast<double>(a)) /
+                      static_cast<double>(b - a);
+  }
+  for (std::size_t r = 1; r < t.size(); r++)
+    if (!(t[r] < t[r - 1])) return false;
+  return true;
+}
+
+}  // namespace
+
+SensorModel organizedModel(const PointCloud& cloud, int h, int w, double max_range,
+                           const std::string& name) {
+  SensorModel m;
+  m.model = name;
+  m.rows = h;
+  m.cols = w;
+  m.max_range = max_range;
+  m.min_range = std::min(0.1, m.max_range / 2);
+  std::vector<double> table = measuredElevations(cloud, cloud.row, h);
+  if (h > 1 && completeTable(table)) {
+    m.beam_elevations = std::move(table);
+    return m;
+  }
+  double s1 = 0, sr = 0, se = 0, srr = 0, sre = 0;
+  for (std::size_t i = 0; i < cloud.size(); i++) {
+    const double x = cloud.x[i], y = cloud.y[i], z = cloud.z[i];
+    const double r = std::sqrt(x * x + y * y + z * z);
+    if (!(r > 0) || !std::isfinite(r)) continue;
+    const double row = cloud.row[i], el = std::asin(z / r);
+    s1 += 1;
+    sr += row;
+    se += el;
+    srr += row * row;
+    sre += row * el;
+  }
+  const double det = s1 * srr - sr * sr;
+  const double b = det > 0 ? (s1 * sre - sr * se) / det : 0.0;
+  const double a = det > 0 ? (se - b * sr) / s1 : 0.0;
+  if (h > 1 && b < 0 && a < M_PI / 2 && a + b * (h - 1) > -M_PI / 2) {
+    m.elevation_top = a;
+    m.elevation_bottom = a + b * (h - 1);
+  } else {  // no usable fit: 1 degree per row around the horizon
+    m.elevation_top = 0.5 * (h - 1) * M_PI / 180.0;
+    m.elevation_bottom = -m.elevation_top - (h > 1 ? 0.0 : 1e-3);
+  }
+  return m;
+}
+
 }  // namespace dynobj::core

@@ -1,73 +1,52 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Row recovery for unordered clouds: each rule on a hand-made sweep whose true beam of every
-// point is known (an uneven 6-beam table, like a real unit's).
+// point is known (UnorderedSweep.h); the model of an organized cloud without a beam table.
 #include <dynobj/core/RowRecovery.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
 #include <stdexcept>
 
+#include "UnorderedSweep.h"
+
 using dynobj::core::LidarFrame;
+using dynobj::core::organizedModel;
 using dynobj::core::PointCloud;
 using dynobj::core::projectUnordered;
 using dynobj::core::recoverRows;
 using dynobj::core::RowSource;
 using dynobj::core::SensorModel;
 
+using dynobj::test::firingOrderSweep;
+using dynobj::test::hint;
+using dynobj::test::kBeams;
+using dynobj::test::kDeg;
+using dynobj::test::kFirings;
+using dynobj::test::shuffle;
+
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-/// Beam elevations [deg] top-down, unevenly spaced.
-const std::vector<double> kBeams = {4.1, 2.0, 1.2, -3.5, -4.0, -9.0};
-constexpr int kFirings = 360;
-
-/// One sweep stored laser by laser (top beam first), each laser one revolution starting at
-/// azimuth `start`; every 7th firing of each laser is a no-return. `laser` receives each point's
-/// beam (index into kBeams). Ranges 20-40 m.
-PointCloud firingOrderSweep(std::vector<int>& laser, double start = 10 * kDeg,
-                            int lasers = static_cast<int>(kBeams.size())) {
+/// An organized cloud (row, column per point) of beams at `elevations` [deg], top row first, 360
+/// columns, ranges 20-40 m; the rows in `empty` have no point.
+PointCloud organizedCloud(const std::vector<double>& elevations,
+                          const std::vector<int>& empty = {}) {
   PointCloud c;
-  laser.clear();
-  for (int l = 0; l < lasers; l++)
-    for (int k = 0; k < kFirings; k++) {
-      if ((k + l) % 7 == 0) continue;
-      const double az = start + 2 * M_PI * k / kFirings, el = kBeams[l] * kDeg;
-      const double r = 20.0 + 20.0 * ((k * 37 + l * 11) % 100) / 100.0;
-      c.push_back(static_cast<float>(r * std::cos(el) * std::cos(az)),
-                  static_cast<float>(r * std::cos(el) * std::sin(az)),
-                  static_cast<float>(r * std::sin(el)), static_cast<float>(l));
-      laser.push_back(l);
+  for (int r = 0; r < static_cast<int>(elevations.size()); r++) {
+    if (std::find(empty.begin(), empty.end(), r) != empty.end()) continue;
+    for (int k = 0; k < 360; k++) {
+      const double az = 2 * M_PI * k / 360, el = elevations[static_cast<std::size_t>(r)] * kDeg;
+      const double range = 20.0 + 20.0 * ((k * 37 + r * 11) % 100) / 100.0;
+      c.push_back(static_cast<float>(range * std::cos(el) * std::cos(az)),
+                  static_cast<float>(range * std::cos(el) * std::sin(az)),
+                  static_cast<float>(range * std::sin(el)), 1.0f, static_cast<std::uint16_t>(r),
+                  static_cast<std::uint16_t>(k));
     }
-  return c;
-}
-
-SensorModel hint(int cols = kFirings) {
-  SensorModel s;
-  s.model = "six";
-  s.rows = static_cast<int>(kBeams.size());
-  s.cols = cols;
-  s.elevation_top = 5 * kDeg;  // a nominal, evenly spaced table: wrong for this unit
-  s.elevation_bottom = -10 * kDeg;
-  return s;
-}
-
-/// Shuffles the points of `c` (and `laser` with them), with a fixed seed.
-void shuffle(PointCloud& c, std::vector<int>& laser) {
-  std::vector<std::size_t> order(c.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), std::mt19937(7));
-  PointCloud out;
-  std::vector<int> l;
-  for (std::size_t i : order) {
-    out.push_back(c.x[i], c.y[i], c.z[i], c.intensity[i]);
-    if (!c.ring.empty()) out.ring.push_back(c.ring[i]);
-    l.push_back(laser[i]);
   }
-  c = out;
-  laser = l;
+  return c;
 }
 
 }  // namespace
@@ -153,4 +132,46 @@ TEST(RowRecovery, WrongRowCountFallsBackToTheTable) {
   const auto rec = recoverRows(c, eight);
   EXPECT_EQ(rec.source, RowSource::NominalTable);
   EXPECT_FALSE(c.isOrganized());
+}
+
+TEST(RowRecovery, OrganizedModelMeasuresTheTableAndInterpolatesEmptyRows) {
+  const PointCloud c = organizedCloud(kBeams, {2});  // row 2 (1.2 deg) without a return
+  const SensorModel m = organizedModel(c, 6, 360, 80.0, "an array");
+  EXPECT_EQ(m.model, "an array");
+  EXPECT_EQ(m.rows, 6);
+  EXPECT_EQ(m.cols, 360);
+  EXPECT_DOUBLE_EQ(m.max_range, 80.0);
+  EXPECT_DOUBLE_EQ(m.min_range, 0.1);
+  ASSERT_EQ(m.beam_elevations.size(), 6u);
+  for (std::size_t r : {0u, 1u, 3u, 4u, 5u})
+    EXPECT_NEAR(m.beam_elevations[r] / kDeg, kBeams[r], 1e-4) << "row " << r;
+  EXPECT_NEAR(m.beam_elevations[2] / kDeg, (2.0 - 3.5) / 2, 1e-4);  // halfway between rows 1, 3
+  EXPECT_DOUBLE_EQ(organizedModel(c, 6, 360, 0.1, "short").min_range, 0.05);
+}
+
+TEST(RowRecovery, OrganizedModelFitsALineWhenTheRowsDoNotDescend) {
+  // Rows 3 and 4 swapped: no strictly descending table; the least-squares line over the points
+  // (an independent solver as the oracle) gives the evenly spaced model.
+  const std::vector<double> swapped = {4.1, 2.0, 1.2, -4.0, -3.5, -9.0};
+  const PointCloud c = organizedCloud(swapped);
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(c.size()), 2);
+  Eigen::VectorXd el(static_cast<Eigen::Index>(c.size()));
+  for (std::size_t i = 0; i < c.size(); i++) {
+    const auto k = static_cast<Eigen::Index>(i);
+    a(k, 0) = 1.0;
+    a(k, 1) = c.row[i];
+    el(k) = std::asin(c.z[i] / std::sqrt(c.x[i] * c.x[i] + c.y[i] * c.y[i] + c.z[i] * c.z[i]));
+  }
+  const Eigen::Vector2d fit = a.colPivHouseholderQr().solve(el);
+  const SensorModel m = organizedModel(c, 6, 360, 100.0, "swapped");
+  EXPECT_TRUE(m.isUniform());
+  EXPECT_NEAR(m.elevation_top, fit(0), 1e-9);
+  EXPECT_NEAR(m.elevation_bottom, fit(0) + 5 * fit(1), 1e-9);
+
+  // Rows stored bottom-up: no descending line either: 1 degree per row around the horizon.
+  const SensorModel up = organizedModel(organizedCloud({-9.0, -4.0, -3.5, 1.2, 2.0, 4.1}), 6, 360,
+                                        100.0, "upside down");
+  EXPECT_TRUE(up.isUniform());
+  EXPECT_NEAR(up.elevation_top / kDeg, 2.5, 1e-12);
+  EXPECT_NEAR(up.elevation_bottom / kDeg, -2.5, 1e-12);
 }

@@ -131,4 +131,18 @@ void IniFile::check(const std::string& own) const {
   if (!problems.empty()) throw core::ParameterError(problems);
 }
 
+core::DetectorParams loadDetectorParams(
+    const std::string& ini, const std::string& section,
+    std::initializer_list<std::pair<const char*, core::StageParams*>> extra) {
+  core::DetectorParams p;
+  if (ini.empty()) return p;
+  IniFile file(ini, "config file");
+  file.expectDetector(section);
+  for (const auto& [name, params] : extra) file.expect(name, params->keys());
+  file.check(section);
+  p.load(file.config(), section);
+  for (const auto& [name, params] : extra) params->loadFromConfigFile(file.config(), name);
+  return p;
+}
+
 }  // namespace dynobj::io

@@ -11,16 +11,6 @@
 namespace dynobj::mrptio {
 namespace {
 
-/// Fractional intensities (KITTI remission, 0-1) are stored x 255 (the 8-bit scale of the
-/// sensor they come from); integer-valued ones (Velodyne 0-255, Ouster 8/16-bit) as they are.
-double intensityScale(const core::PointCloud& c) {
-  if (!c.hasIntensity()) return 1.0;
-  float hi = 0;
-  for (float v : c.intensity)
-    if (std::isfinite(v)) hi = std::max(hi, v);
-  return hi <= 1.0f ? 255.0 : 1.0;
-}
-
 io::CloudFolder openFolder(const std::string& dir, const CloudFolderOptions& o) {
   if (!(o.rate > 0)) throw std::invalid_argument("the sweep rate must be > 0 Hz");
   io::CloudFolder folder(dir, o.times);
@@ -31,11 +21,11 @@ io::CloudFolder openFolder(const std::string& dir, const CloudFolderOptions& o) 
 }  // namespace
 
 CloudFolderFrameSource::CloudFolderFrameSource(const std::string& dir, CloudFolderOptions o)
-    : dir_(dir), o_(std::move(o)), folder_(openFolder(dir, o_)), hint_(o_.sensor) {}
+    : dir_(dir), o_(std::move(o)), folder_(openFolder(dir, o_)), projector_(o_.sensor) {}
 
 void CloudFolderFrameSource::rewind() {
   pos_ = 0;
-  hint_ = o_.sensor;
+  projector_.reset();
   row_sources_.clear();
 }
 
@@ -58,21 +48,18 @@ bool CloudFolderFrameSource::next(Frame& f) {
       cloud.z[i] = p.z();
     }
   }
-  if (scale_ == 0) {  // decided once, on the first sweep, so every sweep has the same scale
-    scale_ = intensityScale(cloud);
-    intensity_ = file.intensity_field.empty()
-                     ? "none (the detector uses range)"
-                     : "'" + file.intensity_field + "'" + (scale_ != 1 ? " x 255" : "");
-  }
-  for (float& v : cloud.intensity) v = static_cast<float>(v * scale_);
-  core::RowSource source{};
+  const bool first = projector_.intensityScale() == 0;
   try {
-    f.stats = core::projectUnordered(cloud, hint_, f.frame, &source, &lasers_);
+    f.stats = projector_.project(cloud, f.frame);
   } catch (const std::invalid_argument& e) {
     throw io::FormatError(folder_.path(k) + ": " + e.what() + "; give --sensor");
   }
-  if (!hint_ && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
-    hint_ = f.frame.sensor;  // later sweeps keep the first complete sweep's rows
+  if (first)
+    intensity_ =
+        file.intensity_field.empty()
+            ? "none (the detector uses range)"
+            : "'" + file.intensity_field + "'" + (projector_.intensityScale() != 1 ? " x 255" : "");
+  const core::RowSource source = projector_.lastRowSource();
   row_sources_[source]++;
   // MRPT reads a zero timestamp as 'invalid': without a times file, sweep k is at (k+1) periods.
   f.frame.timestamp_ns = folder_.timestampNs(k) + (folder_.hasTimes() ? 0 : folder_.periodNs());

@@ -52,69 +52,6 @@ cv::Mat_<float> intensityOf(const CObservation3DRangeScan& o, int h, int w) {
   return out;
 }
 
-/// Fills the NaN entries of a per-row table by linear interpolation between the nearest measured
-/// rows (extrapolated at the ends); false when fewer than two rows were measured or the result
-/// does not descend strictly from row to row.
-bool completeTable(std::vector<double>& t) {
-  std::vector<std::size_t> known;
-  for (std::size_t r = 0; r < t.size(); r++)
-    if (!std::isnan(t[r])) known.push_back(r);
-  if (known.size() < 2) return false;
-  for (std::size_t r = 0; r < t.size(); r++) {
-    if (!std::isnan(t[r])) continue;
-    auto hi = std::lower_bound(known.begin(), known.end(), r);
-    if (hi == known.end()) hi--;
-    if (hi == known.begin()) hi++;
-    const std::size_t a = *(hi - 1), b = *hi;
-    t[r] = t[a] + (t[b] - t[a]) * (static_cast<double>(r) - static_cast<double>(a)) /
-                      static_cast<double>(b - a);
-  }
-  for (std::size_t r = 1; r < t.size(); r++)
-    if (!(t[r] < t[r - 1])) return false;
-  return true;
-}
-
-/// A sensor model for a scan that carries no elevation table: rows/cols from its images, the
-/// beam table measured from its points (core::measuredElevations, per row); a least-squares line
-/// (elevation = a + b * row) when the rows do not descend.
-core::SensorModel derivedModel(const CObservation3DRangeScan& o, const core::PointCloud& cloud,
-                               int h, int w) {
-  core::SensorModel m;
-  m.model = "CObservation3DRangeScan";
-  m.rows = h;
-  m.cols = w;
-  m.max_range = o.maxRange > 1.0f ? static_cast<double>(o.maxRange) : 100.0;
-  m.min_range = std::min(0.1, m.max_range / 2);
-  std::vector<double> table = core::measuredElevations(cloud, cloud.row, h);
-  if (h > 1 && completeTable(table)) {
-    m.beam_elevations = std::move(table);
-    return m;
-  }
-  double s1 = 0, sr = 0, se = 0, srr = 0, sre = 0;
-  for (std::size_t i = 0; i < cloud.size(); i++) {
-    const double x = cloud.x[i], y = cloud.y[i], z = cloud.z[i];
-    const double r = std::sqrt(x * x + y * y + z * z);
-    if (!(r > 0) || !std::isfinite(r)) continue;
-    const double row = cloud.row[i], el = std::asin(z / r);
-    s1 += 1;
-    sr += row;
-    se += el;
-    srr += row * row;
-    sre += row * el;
-  }
-  const double det = s1 * srr - sr * sr;
-  const double b = det > 0 ? (s1 * sre - sr * se) / det : 0.0;
-  const double a = det > 0 ? (se - b * sr) / s1 : 0.0;
-  if (h > 1 && b < 0 && a < M_PI / 2 && a + b * (h - 1) > -M_PI / 2) {
-    m.elevation_top = a;
-    m.elevation_bottom = a + b * (h - 1);
-  } else {  // no usable fit: 1 degree per row around the horizon
-    m.elevation_top = 0.5 * (h - 1) * M_PI / 180.0;
-    m.elevation_bottom = -m.elevation_top - (h > 1 ? 0.0 : 1e-3);
-  }
-  return m;
-}
-
 }  // namespace
 
 core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const OptSensor& sensor,
@@ -128,6 +65,7 @@ core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const
                 sensor->model + "' is " + std::to_string(sensor->rows) + "x" +
                 std::to_string(sensor->cols));
   const cv::Mat_<float> inten = intensityOf(o, h, w);
+  const double max_range = o.maxRange > 1.0f ? static_cast<double>(o.maxRange) : 100.0;
   core::PointCloud cloud;
 
   if (o.hasPoints3D && !o.points3D_x.empty()) {
@@ -155,7 +93,10 @@ core::ProjectionStats convertRangeScan3D(const CObservation3DRangeScan& o, const
       cloud.push_back(x, y, z, inten.empty() ? 0.0f : inten(r, c), r, c);
     }
     if (inten.empty()) cloud.intensity.clear();
-    return organizeOrFail(o, sensor ? *sensor : derivedModel(o, cloud, h, w), cloud, frame);
+    return organizeOrFail(
+        o,
+        sensor ? *sensor : core::organizedModel(cloud, h, w, max_range, "CObservation3DRangeScan"),
+        cloud, frame);
   }
 
   if (!o.hasRangeImage) fail(o, "has no points3D and no range image");

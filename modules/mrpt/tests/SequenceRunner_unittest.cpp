@@ -112,6 +112,45 @@ TEST(SequenceRunner, HindsightHoldsEachSensorsFramesForTheLagAndKeepsTheirOrder)
   EXPECT_EQ(at, (std::vector<int>{1, 2, 3, 4, 5}));
 }
 
+TEST(SequenceRunner, StepReadsOneFrameAndHandsOnWhatTheLagReleases) {
+  // run() is the loop over step(): stepped by hand, the same frames come in the same order, each
+  // callback during the step that released it; the end releases the held frames, and stays the end.
+  FakeFrames ran_src(15, {"A"});
+  std::vector<std::size_t> ran;
+  dm::SequenceRunner(ran_src, {}).run([&](const dm::FrameResult& r) {
+    ran.push_back(r.frame.index);
+  });
+
+  FakeFrames src(15, {"A"});
+  dm::SequenceRunner runner(src, {});
+  std::vector<std::size_t> stepped;
+  std::vector<std::size_t> per_step;
+  const auto collect = [&](const dm::FrameResult& r) {
+    ASSERT_NE(r.detection, nullptr);
+    EXPECT_EQ(r.detection->timestamp_ns, r.frame.frame.timestamp_ns);
+    stepped.push_back(r.frame.index);
+  };
+  for (int k = 0; k < 15; k++) {
+    const std::size_t before = stepped.size();
+    ASSERT_TRUE(runner.step(collect));
+    EXPECT_EQ(runner.frames(), static_cast<std::size_t>(k + 1));
+    per_step.push_back(stepped.size() - before);
+  }
+  // 10 Hz, lag 1 s: nothing for the first 10 frames, then one frame per step.
+  EXPECT_EQ(per_step, (std::vector<std::size_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1}));
+  EXPECT_FALSE(runner.step(collect));  // the end: the 10 held frames
+  EXPECT_EQ(stepped.size(), 15u);
+  EXPECT_EQ(stepped, ran);
+  EXPECT_FALSE(runner.step(collect));
+  EXPECT_EQ(stepped.size(), 15u);
+  EXPECT_EQ(src.produced(), 15);
+
+  FakeFrames none(0, {"A"});  // no frame: not an error for step() (run() throws)
+  dm::SequenceRunner empty(none, {});
+  EXPECT_FALSE(empty.step(collect));
+  EXPECT_EQ(empty.frames(), 0u);
+}
+
 TEST(SequenceRunner, PosesGiveEachSensorTheMotionSinceItsOwnPreviousFrame) {
   const std::string tum = write("dynobj_runner.tum",
                                 "1.0 0 0 0 0 0 0 1\n1.1 1 0 0 0 0 0 1\n"

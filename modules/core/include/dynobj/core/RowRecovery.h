@@ -53,6 +53,14 @@ ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorMo
 std::vector<double> measuredElevations(const PointCloud& cloud,
                                        const std::vector<std::uint16_t>& group, int groups);
 
+/// The model of an organized cloud (cloud.row per point; `rows` x `cols`) that carries no beam
+/// table of its own (a 3D range scan, an organized array): the table measured from its points
+/// (measuredElevations per row, gaps interpolated); a least-squares line (elevation = a + b *
+/// row) when the rows do not descend; else 1 degree per row around the horizon. `max_range` [m]:
+/// what the input says (100 when it says nothing); `name`: the model's name in messages.
+SensorModel organizedModel(const PointCloud& cloud, int rows, int cols, double max_range,
+                           const std::string& name);
+
 /// Azimuth bins per revolution estimated from the data: one per firing, from the median azimuth
 /// step of the best-covered laser (`laser[i]` = row or laser id of point i).
 int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers);

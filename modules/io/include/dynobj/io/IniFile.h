@@ -9,14 +9,20 @@
 // Names compare without case, as MRPT reads them.
 #pragma once
 
+#include <initializer_list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrpt::config {
 class CConfigFileBase;
 class CConfigFile;
 }  // namespace mrpt::config
+namespace dynobj::core {
+struct DetectorParams;
+struct StageParams;
+}  // namespace dynobj::core
 
 namespace dynobj::io {
 
@@ -59,5 +65,14 @@ class IniFile {
   std::vector<Line> lines_;
   std::vector<std::pair<std::string, std::vector<std::string>>> known_;
 };
+
+/// The detector's parameters from `ini` (defaults when empty), sections prefixed by `section`,
+/// and those of `extra` (section name, its parameters) from the same file: what every tool's -c
+/// and the Python module's config read. Throws core::ParameterError when the file does not exist,
+/// or a value, key or section is bad ("file:line: unknown key ..."). With a prefix, sections that
+/// neither start with it nor resemble one of ours are left alone.
+core::DetectorParams loadDetectorParams(
+    const std::string& ini, const std::string& section = "",
+    std::initializer_list<std::pair<const char*, core::StageParams*>> extra = {});
 
 }  // namespace dynobj::io

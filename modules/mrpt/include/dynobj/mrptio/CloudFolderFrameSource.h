@@ -2,15 +2,15 @@
 // A folder of point-cloud sweeps (*.pcd or KITTI *.bin, io::CloudFolder) as LiDAR frames: the one
 // conversion of a user's sweep files, shared by dynobj-import (which writes the frames as a
 // rawlog) and the tools that read such a folder directly (dynobj-eval, dynobj-detect). Per sweep:
-// points into the sensor frame (PCD VIEWPOINT), intensity on one scale for the whole recording
-// (fractional remission 0-1 x 255, decided on the first sweep), rows recovered
-// (core::RowRecovery: the first sweep whose rows come from a ring field or the firing order fixes
-// the rows of the later ones), time stamps from a times file or the rate. Each frame keeps its
+// points into the sensor frame (PCD VIEWPOINT), then core::SweepProjector (intensity on one
+// scale for the whole recording, rows recovered as the first complete sweep found them), time
+// stamps from a times file or the rate. Each frame keeps its
 // input points (Frame::points), in the file's order, so that per-pixel results map back to every
 // point of the file.
 #pragma once
 
 #include <dynobj/core/RowRecovery.h>
+#include <dynobj/core/SweepProjector.h>
 #include <dynobj/io/CloudFolder.h>
 
 #include <map>
@@ -42,7 +42,7 @@ class CloudFolderFrameSource final : public FrameSource {
   const std::map<core::RowSource, std::size_t>& rowSources() const { return row_sources_; }
   /// Lasers found in the last sweep read (core::projectUnordered; 0 when the rows came from a
   /// table), for checking a preset against the data.
-  int lastLasers() const { return lasers_; }
+  int lastLasers() const { return projector_.lastLasers(); }
   /// The field that became the intensity and its scale ("'intensity' x 255"), after a sweep.
   const std::string& intensityDescription() const { return intensity_; }
 
@@ -51,11 +51,9 @@ class CloudFolderFrameSource final : public FrameSource {
   CloudFolderOptions o_;
   io::CloudFolder folder_;
   std::size_t pos_ = 0;
-  std::optional<core::SensorModel> hint_;
-  double scale_ = 0;  ///< intensity scale, decided on the first sweep
+  core::SweepProjector projector_;
   std::string intensity_;
   std::map<core::RowSource, std::size_t> row_sources_;
-  int lasers_ = 0;
 };
 
 /// "firing order 153, estimated table 1": the rules of rowSources(), most used first.

@@ -62,6 +62,14 @@ class SequenceRunner {
   /// std::runtime_error when there was none (require_frames), a frame has no pose or ground-truth
   /// sweep, or (one sensor) a second LiDAR label shows up.
   std::size_t run(const std::function<void(const FrameResult&)>& on_frame);
+  /// One step of run(), for callers that hand the frames on one at a time (the Python module's
+  /// process_sequence): reads and detects the source's next frame and calls `on_frame` for each
+  /// frame released by it (none while the lag holds them). At the end of the source (or
+  /// max_frames) releases the frames still held and returns false (and false from then on).
+  /// Throws as run() does, but not when there was no frame.
+  bool step(const std::function<void(const FrameResult&)>& on_frame);
+  /// Frames read so far.
+  std::size_t frames() const { return frames_; }
 
   const std::optional<GroundTruth>& groundTruth() const { return truth_; }
   DetectorBank& detectors() { return bank_; }
@@ -85,6 +93,9 @@ class SequenceRunner {
   std::map<std::string, const io::TimedPose*> last_pose_;  ///< per sensor label
   std::string first_label_;
   core::HindsightQueue<Held> held_;
+  Frame frame_;  ///< the frame being read (moved into held_ when held)
+  std::size_t frames_ = 0;
+  bool finished_ = false;
 };
 
 }  // namespace dynobj::mrptio
