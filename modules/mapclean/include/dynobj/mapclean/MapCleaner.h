@@ -46,7 +46,7 @@ struct MapCleanParams : public core::StageParams {
   double voxel_size = 0.05;  ///< [m] map voxel; 0 = keep every point
   /// [s] back-fill (see above): how long a scan waits for its tracks to be confirmed; 0 = off
   /// (each scan mapped as soon as its detection is final: causal)
-  double backfill_window = 10.0;
+  double backfill_window = 30.0;
   double box_margin = 0.15;  ///< [m] growth of a track's box sideways and upwards (back-fill)
   double min_range = 0.0;    ///< [m] points nearer than this (e.g. the robot itself) are not mapped
   /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
