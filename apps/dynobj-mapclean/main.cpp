@@ -30,7 +30,7 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<std::string> config(
       "c", "config",
       "INI: detector sections (as dynobj.ini) and [mapclean] (voxel_size, "
-      "second_pass, box_margin, min_range, dynamic_vote, free_space_*)",
+      "backfill_window, box_margin, min_range, dynamic_vote, free_space_*)",
       false, "", "file.ini", cmd);
   TCLAP::ValueArg<double> voxel("", "voxel", "Map voxel size [m] (0 = every point)", false, -1, "m",
                                 cmd);
@@ -38,8 +38,9 @@ int run(int argc, char** argv) {
       "", "level-poses",
       "Level each pose with the scan's floor (roll, pitch, height; assumes a level floor)", cmd);
   TCLAP::SwitchArg single(
-      "", "single-pass",
-      "No second pass: map each sweep as soon as its detection is final (after the hindsight lag)",
+      "", "no-backfill",
+      "No back-fill of confirmed tracks: map each sweep as soon as its detection is final (after "
+      "the hindsight lag; [mapclean] backfill_window = 0)",
       cmd);
   dynobj::apps::SensorArgs sensor(cmd);
   TCLAP::ValueArg<std::string> labels(
@@ -79,7 +80,7 @@ int run(int argc, char** argv) {
   o.detector = dynobj::apps::loadDetectorParams(config.getValue(), "", {{"mapclean", &o.clean}});
   threads.apply(o.detector);
   if (voxel.isSet()) o.clean.voxel_size = voxel.getValue();
-  if (single.isSet()) o.clean.second_pass = false;
+  if (single.isSet()) o.clean.backfill_window = 0;
   if (level.isSet()) o.clean.level_poses = true;
   o.clean.validate();
   o.scan_options.sensor = sensor.model();

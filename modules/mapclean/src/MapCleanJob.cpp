@@ -8,6 +8,7 @@
 #include <dynobj/mrptio/SequenceRunner.h>
 
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
@@ -15,7 +16,6 @@
 
 #include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
-#include "dynobj/mapclean/MapVisibilityCheck.h"
 #include "dynobj/mapclean/MrptOutputs.h"
 #include "dynobj/mapclean/PointCloudIO.h"
 #include "dynobj/mapclean/TopDownImage.h"
@@ -145,20 +145,38 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   std::unique_ptr<KthExporter> exporter;
   if (!o.export_kth.empty())
     exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr, o.overwrite);
+  io::TumWriter tum(out + "poses.tum", "sensor pose in the world, as mapped by dynobj-mapclean");
+  std::vector<Eigen::Isometry3d> mapped_poses;  // for the metrics' pass (a few MB per hour)
 
-  const bool two_pass = o.clean.second_pass;
   const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
-    const cv::Mat_<std::uint8_t> mask = cleaner.dynamicMask(s.frame, rec, two_pass);
-    cleaner.accumulate(s.frame, mask, rec.sensor_pose);
+    const cv::Mat_<std::uint8_t> mask = cleaner.dynamicMask(s.frame, rec);
+    cleaner.map(s.frame, mask, rec.sensor_pose);
     if (simplemap) simplemap->add(s, mask, rec.sensor_pose);
     if (exporter) {
       const cv::Mat_<std::uint8_t> gt =
           gt_labels ? gt_labels->mask(s.frame, s.index) : cv::Mat_<std::uint8_t>();
       exporter->add(s.frame, rec.sensor_pose, gt_labels ? &gt : nullptr);
     }
+    tum.write(rec.timestamp_ns, rec.sensor_pose);
+    if (!o.ground_truth.empty()) mapped_poses.push_back(rec.sensor_pose);
+    report("map", ++sum.scans, 0);
   };
 
-  std::vector<FrameRecord> records;  // pixel lists dropped in single-pass mode
+  // One pass over the input. With back-fill, a scan is mapped backfill_window seconds after its
+  // detection, read again by a second reader that trails the detector's: memory holds the
+  // window's records (no points), never the recording.
+  const bool backfill = !labels && o.clean.backfill_window > 0;
+  const auto window_ns = static_cast<std::int64_t>(o.clean.backfill_window * 1e9);
+  std::unique_ptr<ScanSource> trailing;
+  if (backfill) trailing = openScanSource(o.input, o.scan_options);
+  std::deque<FrameRecord> waiting;
+  Scan scan;
+  const auto mapOldest = [&] {
+    if (!trailing->next(scan) || scan.frame.timestamp_ns != waiting.front().timestamp_ns)
+      throw std::runtime_error(source->describe() + " changed while it was read");
+    mapScan(scan, waiting.front());
+    waiting.pop_front();
+  };
   GroundLeveler leveler;
   runner.run([&](const mrptio::FrameResult& fr) {
     const Scan& s = fr.frame;
@@ -166,49 +184,29 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
         poses->pose(s, fr.detection ? fr.detection->ego_motion : core::EgoMotion{});
     if (o.clean.level_poses)
       if (const auto ground = leveler.fit(s.frame)) pose = leveler.level(pose, *ground);
+    FrameRecord rec;
     if (labels) {
       std::size_t k = 0;
       const io::LabelSweep& sweep = labels->sweep(s.frame, s.index, &k);
       if (!labels->labels().isReviewed(k)) sum.unreviewed_sweeps++;
-      records.push_back(FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}});
+      rec = FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}};
     } else {
-      records.push_back(cleaner.record(*fr.detection, pose));
+      rec = cleaner.record(*fr.detection, pose);
       sum.data_faults.insert(sum.data_faults.end(), fr.detection->warnings.begin(),
                              fr.detection->warnings.end());
     }
-    if (!two_pass) {
-      mapScan(s, records.back());
-      records.back().dynamic_pixels.clear();
-      records.back().dynamic_pixels.shrink_to_fit();
-    }
-    report("detect", records.size(), 0);
+    if (!backfill) return mapScan(s, rec);
+    waiting.push_back(std::move(rec));
+    while (waiting.size() > 1 && (waiting.back().timestamp_ns - waiting.front().timestamp_ns >
+                                      window_ns ||  // or the clock went back: no waiting on it
+                                  waiting.back().timestamp_ns < waiting.front().timestamp_ns))
+      mapOldest();
   });
-  Scan scan;
-  sum.scans = records.size();
+  while (!waiting.empty()) mapOldest();
   sum.poses = poses->describe();  // after the first scan: what "auto" chose
-  if (two_pass) {
-    source->rewind();
-    for (std::size_t k = 0; k < records.size(); k++) {
-      if (!source->next(scan) || scan.frame.timestamp_ns != records[k].timestamp_ns)
-        throw std::runtime_error(source->describe() + " changed between passes");
-      mapScan(scan, records[k]);
-      report("map", k + 1, records.size());
-    }
-  }
 
   sum.voted = cleaner.finish();
-  if (o.clean.free_space_check && o.clean.voxel_size > 0) {  // a further streaming pass
-    MapVisibilityCheck check(o.clean.freeSpace(), cleaner.staticMap().voxels());
-    source->rewind();
-    const auto stride = static_cast<std::size_t>(o.clean.free_space_stride);
-    for (std::size_t k = 0; k < records.size(); k++) {
-      if (!source->next(scan) || scan.frame.timestamp_ns != records[k].timestamp_ns)
-        throw std::runtime_error(source->describe() + " changed between passes");
-      if (k % stride == 0) check.addScan(scan.frame, records[k].sensor_pose);
-      report("free space", k + 1, records.size());
-    }
-    sum.seen_through = cleaner.moveToDynamic(check.seenThrough());
-  }
+  sum.seen_through = cleaner.moveSeenThrough();
   const std::vector<MapPoint> st = cleaner.staticMap().points(), dy = cleaner.dynamicMap().points();
   sum.points_static = cleaner.staticMap().pointsInserted();
   sum.points_dynamic = cleaner.dynamicMap().pointsInserted();
@@ -233,8 +231,6 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     io::writePngAtomically(out + "map.png", map);
     io::writePngAtomically(out + "static.png", clean);
   }
-  io::TumWriter tum(out + "poses.tum", "sensor pose in the world, as mapped by dynobj-mapclean");
-  for (const FrameRecord& r : records) tum.write(r.timestamp_ns, r.sensor_pose);
   tum.close();
   for (const std::string& f : outputFiles(o))
     if (f != o.export_kth && f != out + "cleaned.simplemap") sum.files.push_back(f);
@@ -254,12 +250,12 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     MapEvaluator eval(st, o.tolerance);
     if (gt_labels) {
       source->rewind();
-      for (std::size_t k = 0; k < records.size() && source->next(scan); k++) {
+      for (std::size_t k = 0; k < mapped_poses.size() && source->next(scan); k++) {
         const cv::Mat_<std::uint8_t> gt = gt_labels->mask(scan.frame, scan.index);
         forEachWorldPoint(
-            scan.frame, records[k].sensor_pose, o.clean.min_range,
+            scan.frame, mapped_poses[k], o.clean.min_range,
             [&](int r, int c, const MapPoint& p) { eval.add(p.x, p.y, p.z, gt(r, c) != 0); });
-        report("evaluate", k + 1, records.size());
+        report("evaluate", k + 1, mapped_poses.size());
       }
     } else {
       for (const MapPoint& p : readPcd(o.ground_truth).points)

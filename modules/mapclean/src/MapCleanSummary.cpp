@@ -35,9 +35,12 @@ std::string pct(const std::optional<double>& v) {
 
 std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
   std::string out;
+  const std::string backfill =
+      o.clean.backfill_window > 0 && o.labels.empty()
+          ? fmt("back-fill window %.3g s", o.clean.backfill_window)
+          : std::string("no back-fill");
   out += fmt("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
-             o.clean.level_poses ? " (leveled with the floor)" : "",
-             o.clean.second_pass ? "two passes" : "single pass");
+             o.clean.level_poses ? " (leveled with the floor)" : "", backfill.c_str());
   if (!o.labels.empty())
     out += fmt(
         "  classification: label file '%s' (detector not run; %zu scans by unreviewed sweeps)\n",
@@ -52,7 +55,7 @@ std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
   }
   out += fmt(
       "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
-      "dynamic, %zu points added by the second pass, %zu voxels by the vote, %zu by the free-space "
+      "dynamic, %zu points added by the back-fill, %zu voxels by the vote, %zu by the free-space "
       "check\n",
       s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
       s.backfilled, s.voted, s.seen_through);

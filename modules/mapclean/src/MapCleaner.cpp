@@ -10,7 +10,7 @@ namespace dynobj::mapclean {
 
 void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("voxel_size", voxel_size);
-  v.value("second_pass", second_pass);
+  v.value("backfill_window", backfill_window);
   v.value("box_margin", box_margin);
   v.value("min_range", min_range);
   v.value("dynamic_vote", dynamic_vote);
@@ -22,10 +22,12 @@ void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("free_space_window", visibility.window);
   v.value("free_space_min_views", visibility.min_views);
   v.value("free_space_ratio", visibility.ratio);
+  v.value("free_space_past", visibility.past);
 }
 
 void MapCleanParams::validate() const {
   core::requireInRange("voxel_size", voxel_size, 0.0, 10.0);
+  core::requireInRange("backfill_window", backfill_window, 0.0, 3600.0);
   core::requireInRange("box_margin", box_margin, 0.0, 5.0);
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
   core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
@@ -35,6 +37,7 @@ void MapCleanParams::validate() const {
   core::requireInRange("free_space_window", visibility.window, 0, 100);
   core::requireInRange("free_space_min_views", visibility.min_views, 1, 65535);
   core::requireInRange("free_space_ratio", visibility.ratio, 0.0, 1000.0);
+  core::requireInRange("free_space_past", visibility.past, 0.0, 3600.0);
 }
 
 VisibilityParams MapCleanParams::freeSpace() const {
@@ -51,7 +54,7 @@ const MapCleanParams& validated(const MapCleanParams& p) {
 }  // namespace
 
 MapCleaner::MapCleaner(const MapCleanParams& p)
-    : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size) {}
+    : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size), visibility_(p.freeSpace()) {}
 
 FrameRecord MapCleaner::record(const core::DetectionResult& r,
                                const Eigen::Isometry3d& sensor_pose) {
@@ -67,14 +70,14 @@ FrameRecord MapCleaner::record(const core::DetectionResult& r,
 }
 
 cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
-                                               const FrameRecord& rec, bool second_pass) const {
+                                               const FrameRecord& rec) const {
   cv::Mat_<std::uint8_t> mask(frame.rows(), frame.cols(), std::uint8_t{0});
   auto* m = mask.ptr<std::uint8_t>(0);
   for (auto px : rec.dynamic_pixels) {
     if (px >= frame.pixelCount()) throw std::out_of_range("dynamic pixel outside the frame");
     m[px] = 255;
   }
-  if (!second_pass) return mask;
+  if (p_.backfill_window <= 0) return mask;
   std::vector<ObjectBox> boxes;
   const float g = static_cast<float>(p_.box_margin);
   for (const ObjectBox& b : rec.objects)
@@ -102,25 +105,36 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
 
 std::size_t MapCleaner::finish() {
   if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
-  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static) {
+  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static,
+                                            VoxelMap::Views) {
     return static_cast<double>(n_static) * p_.dynamic_vote >
            static_cast<double>(dynamic_.countAt(key));
   });
 }
 
-std::size_t MapCleaner::moveToDynamic(const std::vector<std::uint64_t>& keys) {
-  if (keys.empty()) return 0;
-  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t) {
-    return !std::binary_search(keys.begin(), keys.end(), key);
+std::size_t MapCleaner::moveSeenThrough() {
+  if (!p_.free_space_check || p_.voxel_size <= 0) return 0;
+  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t, std::uint32_t, VoxelMap::Views v) {
+    return !visibility_.isSeenThrough(v);
   });
 }
 
-void MapCleaner::accumulate(const core::LidarFrame& frame,
-                            const cv::Mat_<std::uint8_t>& dynamic_mask,
-                            const Eigen::Isometry3d& sensor_pose) {
+void MapCleaner::map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
+                     const Eigen::Isometry3d& sensor_pose) {
+  const bool check = p_.free_space_check && p_.voxel_size > 0;
+  std::vector<std::uint64_t> opened;  // static voxels new in the map: the past scans' views
   forEachWorldPoint(frame, sensor_pose, p_.min_range, [&](int r, int c, const MapPoint& p) {
-    (dynamic_mask(r, c) ? dynamic_ : static_).insert(p);
+    if (dynamic_mask(r, c))
+      dynamic_.insert(p);
+    else if (static_.insert(p) && check)
+      opened.push_back(static_.keyOf(p.x, p.y, p.z));
   });
+  if (check) {
+    visibility_.countPast(static_, opened, frame.timestamp_ns);
+    if (mapped_ % static_cast<std::size_t>(p_.free_space_stride) == 0)
+      visibility_.addScan(frame, sensor_pose, static_);
+  }
+  mapped_++;
 }
 
 }  // namespace dynobj::mapclean

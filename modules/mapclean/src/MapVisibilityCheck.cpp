@@ -43,40 +43,82 @@ void bump(std::uint16_t& n) {
 }  // namespace
 
 MapVisibilityCheck::MapVisibilityCheck(const VisibilityParams& p, std::vector<VoxelCentre> voxels)
-    : p_(p), voxels_(std::move(voxels)), free_(voxels_.size(), 0), hit_(voxels_.size(), 0) {}
+    : p_(p), voxels_(std::move(voxels)), views_(voxels_.size()) {}
+
+MapVisibilityCheck::MapVisibilityCheck(const VisibilityParams& p) : p_(p) {}
 
 MapVisibilityCheck::~MapVisibilityCheck() = default;
 
-void MapVisibilityCheck::addScan(const core::LidarFrame& frame,
-                                 const Eigen::Isometry3d& sensor_pose) {
+MapVisibilityCheck::ScanView MapVisibilityCheck::prepare(const core::LidarFrame& frame,
+                                                         const Eigen::Isometry3d& sensor_pose) {
   const core::SensorModel& s = frame.sensor;
   if (!projection_ || projection_->sensor().rows != s.rows || projection_->sensor().cols != s.cols)
     projection_ = std::make_unique<core::SphericalProjection>(s);
-  nearestInWindow(frame, std::max(0, p_.window), nearest_);
   scans_++;
-  const Eigen::Isometry3f to_sensor = sensor_pose.inverse().cast<float>();
-  const float near = static_cast<float>(std::max(p_.min_range, s.min_range));
-  const float far = static_cast<float>(s.max_range);
-  const auto margin = static_cast<float>(p_.margin), margin_rel = static_cast<float>(p_.margin_rel);
-  for (std::size_t i = 0; i < voxels_.size(); i++) {
-    const VoxelCentre& v = voxels_[i];
-    const Eigen::Vector3f q = to_sensor * Eigen::Vector3f(v.x, v.y, v.z);
-    const float range = q.norm();
-    if (range < near || range > far) continue;
-    int r = -1, c = -1;
-    if (!projection_->pixelOf(q.x(), q.y(), q.z(), r, c) || !frame.isValid(r, c)) continue;
-    const float tol = margin + margin_rel * range;
-    if (nearest_(r, c) > range + tol)
-      bump(free_[i]);  // every beam around it ends beyond it
-    else if (std::abs(frame.range(r, c) - range) <= tol)
-      bump(hit_[i]);
-  }
+  ScanView v;
+  v.timestamp_ns = frame.timestamp_ns;
+  v.range = cv::Mat_<float>(frame.rows(), frame.cols(), 0.f);
+  frame.range.copyTo(v.range, frame.valid);
+  cv::Mat_<float> nearest;
+  nearestInWindow(frame, std::max(0, p_.window), nearest);
+  v.nearest = nearest;
+  v.to_sensor = sensor_pose.inverse().cast<float>();
+  v.near = static_cast<float>(std::max(p_.min_range, s.min_range));
+  v.far = static_cast<float>(s.max_range);
+  return v;
+}
+
+template <class T>
+void MapVisibilityCheck::count(const ScanView& scan, float x, float y, float z,
+                               VoxelMap::Views& views) const {
+  const Eigen::Vector3f q = scan.to_sensor * Eigen::Vector3f(x, y, z);
+  const float range = q.norm();
+  if (range < scan.near || range > scan.far) return;
+  int r = -1, c = -1;
+  if (!projection_->pixelOf(q.x(), q.y(), q.z(), r, c)) return;
+  const auto measured = static_cast<float>(scan.range.at<T>(r, c));
+  if (!(measured > 0.f)) return;  // no return there
+  const float tol = static_cast<float>(p_.margin) + static_cast<float>(p_.margin_rel) * range;
+  if (static_cast<float>(scan.nearest.at<T>(r, c)) > range + tol)
+    bump(views.free);  // every beam around it ends beyond it
+  else if (std::abs(measured - range) <= tol)
+    bump(views.hit);
+}
+
+void MapVisibilityCheck::addScan(const core::LidarFrame& frame,
+                                 const Eigen::Isometry3d& sensor_pose) {
+  const ScanView scan = prepare(frame, sensor_pose);
+  for (std::size_t i = 0; i < voxels_.size(); i++)
+    count<float>(scan, voxels_[i].x, voxels_[i].y, voxels_[i].z, views_[i]);
+}
+
+void MapVisibilityCheck::addScan(const core::LidarFrame& frame,
+                                 const Eigen::Isometry3d& sensor_pose, VoxelMap& map) {
+  ScanView scan = prepare(frame, sensor_pose);
+  map.forEachVoxel(
+      [&](float x, float y, float z, VoxelMap::Views& v) { count<float>(scan, x, y, z, v); });
+  if (p_.past <= 0) return;
+  scan.range.convertTo(scan.range, CV_16F);
+  scan.nearest.convertTo(scan.nearest, CV_16F);
+  past_.push_back(std::move(scan));
+}
+
+void MapVisibilityCheck::countPast(VoxelMap& map, const std::vector<std::uint64_t>& keys,
+                                   std::int64_t now_ns) {
+  const auto past_ns = static_cast<std::int64_t>(p_.past * 1e9);
+  while (!past_.empty() && (now_ns - past_.front().timestamp_ns > past_ns ||
+                            now_ns < past_.front().timestamp_ns))  // or the clock went back
+    past_.pop_front();
+  if (past_.empty() || keys.empty()) return;
+  map.forVoxels(keys, [&](float x, float y, float z, VoxelMap::Views& v) {
+    for (const ScanView& scan : past_) count<cv::float16_t>(scan, x, y, z, v);
+  });
 }
 
 std::vector<std::uint64_t> MapVisibilityCheck::seenThrough() const {
   std::vector<std::uint64_t> keys;
   for (std::size_t i = 0; i < voxels_.size(); i++)
-    if (free_[i] >= p_.min_views && free_[i] >= p_.ratio * hit_[i]) keys.push_back(voxels_[i].key);
+    if (isSeenThrough(views_[i])) keys.push_back(voxels_[i].key);
   std::sort(keys.begin(), keys.end());
   return keys;
 }

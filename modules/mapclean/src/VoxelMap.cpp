@@ -30,54 +30,139 @@ std::uint64_t VoxelMap::keyOf(float x, float y, float z) const {
   return (packAxis(x, voxel_) << 42) | (packAxis(y, voxel_) << 21) | packAxis(z, voxel_);
 }
 
-void VoxelMap::insert(const MapPoint& p) {
+namespace {
+
+std::uint64_t mix(std::uint64_t k) {  // splitmix64's finaliser: neighbouring keys spread out
+  k ^= k >> 30;
+  k *= 0xbf58476d1ce4e5b9ull;
+  k ^= k >> 27;
+  k *= 0x94d049bb133111ebull;
+  return k ^ (k >> 31);
+}
+
+}  // namespace
+
+const VoxelMap::Slot* VoxelMap::find(std::uint64_t key) const {
+  if (slots_.empty()) return nullptr;
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = mix(key) & mask;; i = (i + 1) & mask) {
+    if (slots_[i].key == key) return &slots_[i];
+    if (slots_[i].key == kEmpty) return nullptr;
+  }
+}
+
+VoxelMap::Slot* VoxelMap::find(std::uint64_t key) {
+  return const_cast<Slot*>(static_cast<const VoxelMap*>(this)->find(key));
+}
+
+VoxelMap::Slot& VoxelMap::slotFor(std::uint64_t key) {
+  if ((used_ + 1) * 10 > slots_.size() * 7) {  // grow: twice the slots, every voxel again
+    std::vector<Slot> old;
+    old.swap(slots_);
+    slots_.assign(std::max<std::size_t>(1024, old.size() * 2), Slot{});
+    used_ = 0;
+    for (const Slot& s : old)
+      if (s.key != kEmpty) slotFor(s.key) = s;
+  }
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = mix(key) & mask;; i = (i + 1) & mask) {
+    if (slots_[i].key == key) return slots_[i];
+    if (slots_[i].key == kEmpty) {
+      slots_[i].key = key;
+      used_++;
+      return slots_[i];
+    }
+  }
+}
+
+void VoxelMap::rebuild(const std::vector<Slot>& slots) {
+  std::size_t n = 1024;
+  while (slots.size() * 10 > n * 7) n *= 2;
+  slots_.assign(n, Slot{});
+  used_ = 0;
+  for (const Slot& s : slots) slotFor(s.key) = s;
+}
+
+void VoxelMap::merge(const Slot& s) {
+  Cell& c = slotFor(s.key).cell;
+  const double n = static_cast<double>(c.n) + s.cell.n;
+  const auto mean = [&](float a, float b) {
+    return static_cast<float>((static_cast<double>(a) * c.n + static_cast<double>(b) * s.cell.n) /
+                              n);
+  };
+  c.dx = mean(c.dx, s.cell.dx);
+  c.dy = mean(c.dy, s.cell.dy);
+  c.dz = mean(c.dz, s.cell.dz);
+  c.intensity = mean(c.intensity, s.cell.intensity);
+  c.n += s.cell.n;
+}
+
+void VoxelMap::corner(std::uint64_t key, double& x, double& y, double& z) const {
+  constexpr std::uint64_t kAxis = (std::uint64_t{1} << 21) - 1;
+  const auto axis = [&](std::uint64_t bits) {
+    return static_cast<double>(static_cast<std::int64_t>(bits & kAxis) - kHalfRange) * voxel_;
+  };
+  x = axis(key >> 42);
+  y = axis(key >> 21);
+  z = axis(key);
+}
+
+MapPoint VoxelMap::centroid(const Slot& s) const {
+  double x = 0, y = 0, z = 0;
+  corner(s.key, x, y, z);
+  return {static_cast<float>(x + s.cell.dx), static_cast<float>(y + s.cell.dy),
+          static_cast<float>(z + s.cell.dz), s.cell.intensity};
+}
+
+bool VoxelMap::insert(const MapPoint& p) {
   inserted_++;
   if (voxel_ == 0.0) {
     raw_.push_back(p);
-    return;
+    return true;
   }
-  Cell& c = cells_[keyOf(p.x, p.y, p.z)];
-  c.sx += p.x;
-  c.sy += p.y;
-  c.sz += p.z;
-  c.si += p.intensity;
+  const std::uint64_t key = keyOf(p.x, p.y, p.z);
+  Cell& c = slotFor(key).cell;
+  double x = 0, y = 0, z = 0;
+  corner(key, x, y, z);
   c.n++;
+  const float w = 1.f / static_cast<float>(c.n);
+  c.dx += (static_cast<float>(p.x - x) - c.dx) * w;
+  c.dy += (static_cast<float>(p.y - y) - c.dy) * w;
+  c.dz += (static_cast<float>(p.z - z) - c.dz) * w;
+  c.intensity += (p.intensity - c.intensity) * w;
+  return c.n == 1;
 }
 
 std::uint32_t VoxelMap::countAt(std::uint64_t key) const {
-  const auto it = cells_.find(key);
-  return it == cells_.end() ? 0 : it->second.n;
+  const Slot* s = find(key);
+  return s ? s->cell.n : 0;
 }
 
 std::size_t VoxelMap::size() const {
-  return voxel_ == 0.0 ? raw_.size() : cells_.size();
+  return voxel_ == 0.0 ? raw_.size() : used_;
 }
 
 std::vector<MapPoint> VoxelMap::points() const {
   if (voxel_ == 0.0) return raw_;
-  std::vector<std::uint64_t> keys;
-  keys.reserve(cells_.size());
-  for (const auto& kv : cells_) keys.push_back(kv.first);
-  std::sort(keys.begin(), keys.end());
+  std::vector<const Slot*> order;
+  order.reserve(used_);
+  for (const Slot& s : slots_)
+    if (s.key != kEmpty) order.push_back(&s);
+  std::sort(order.begin(), order.end(), [](const Slot* a, const Slot* b) { return a->key < b->key; });
   std::vector<MapPoint> out;
-  out.reserve(keys.size());
-  for (auto k : keys) {
-    const Cell& c = cells_.at(k);
-    const double n = c.n;
-    out.push_back({static_cast<float>(c.sx / n), static_cast<float>(c.sy / n),
-                   static_cast<float>(c.sz / n), static_cast<float>(c.si / n)});
-  }
+  out.reserve(order.size());
+  for (const Slot* s : order) out.push_back(centroid(*s));
   return out;
 }
 
 std::vector<VoxelCentre> VoxelMap::voxels() const {
   std::vector<VoxelCentre> out;
-  out.reserve(cells_.size());
-  for (const auto& [key, c] : cells_) {
-    const double n = c.n;
-    out.push_back({key, static_cast<float>(c.sx / n), static_cast<float>(c.sy / n),
-                   static_cast<float>(c.sz / n)});
-  }
+  out.reserve(used_);
+  for (const Slot& s : slots_)
+    if (s.key != kEmpty) {
+      const MapPoint p = centroid(s);
+      out.push_back({s.key, p.x, p.y, p.z});
+    }
   std::sort(out.begin(), out.end(),
             [](const VoxelCentre& a, const VoxelCentre& b) { return a.key < b.key; });
   return out;

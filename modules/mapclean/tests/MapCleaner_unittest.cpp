@@ -39,7 +39,7 @@ mc::MapCleanParams params(double voxel) {
 
 }  // namespace
 
-TEST(MapCleaner, SecondPassMarksATracksFramesBeforeItWasConfirmed) {
+TEST(MapCleaner, BackfillMarksATracksFramesBeforeItWasConfirmed) {
   mc::MapCleaner cleaner(params(0.0));
   // Frame 0: track 7 seen at x = 5 (not yet dynamic); the detector flags nothing.
   // Frame 1: track 7 confirmed dynamic (pixel 9 flagged); track 8 never dynamic.
@@ -56,17 +56,20 @@ TEST(MapCleaner, SecondPassMarksATracksFramesBeforeItWasConfirmed) {
                                        {{2, 3}, {5.0f, 0.f, -0.6f}},  // below the box: floor, kept
                                        {{1, 4}, {9.5f, 9.5f, 0.5f}},  // track 8: never dynamic
                                        {{0, 0}, {1.f, 1.f, 1.f}}});
-  const auto with = cleaner.dynamicMask(f0, rec0, true);
+  const auto with = cleaner.dynamicMask(f0, rec0);
   EXPECT_EQ(with(1, 2), 255);
   EXPECT_EQ(with(1, 3), 255);
   EXPECT_EQ(with(2, 3), 0);
   EXPECT_EQ(with(1, 4), 0);
   EXPECT_EQ(with(0, 0), 0);
   EXPECT_EQ(cleaner.backfilledPixels(), 2u);
-  EXPECT_EQ(cv::countNonZero(cleaner.dynamicMask(f0, rec0, false)), 0);
+  mc::MapCleanParams causal = params(0.0);
+  causal.backfill_window = 0;  // no back-fill: only the detector's pixels
+  const mc::MapCleaner online(causal);
+  EXPECT_EQ(cv::countNonZero(online.dynamicMask(f0, rec0)), 0);
   // Frame 1: the detector's own pixel is kept as is.
   const auto f1 = mc::test::tinyFrame({{{1, 1}, {6.f, 0.f, 0.f}}});
-  EXPECT_EQ(cleaner.dynamicMask(f1, rec1, false)(1, 1), 255);
+  EXPECT_EQ(online.dynamicMask(f1, rec1)(1, 1), 255);
 }
 
 TEST(MapCleaner, AccumulatesIntoStaticAndDynamicMapsInTheWorld) {
@@ -79,8 +82,8 @@ TEST(MapCleaner, AccumulatesIntoStaticAndDynamicMapsInTheWorld) {
                                       {{2, 2}, {5.5f, 0.5f, 0.5f}}});
   cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
   mask(2, 2) = 255;
-  cleaner.accumulate(f, mask, pose);
-  cleaner.accumulate(f, mask, pose);  // the same scan twice: the maps do not grow
+  cleaner.map(f, mask, pose);
+  cleaner.map(f, mask, pose);  // the same scan twice: the maps do not grow
   ASSERT_EQ(cleaner.staticMap().size(), 1u);
   ASSERT_EQ(cleaner.dynamicMap().size(), 1u);
   EXPECT_EQ(cleaner.staticMap().pointsInserted(), 4u);
@@ -97,7 +100,7 @@ TEST(MapCleaner, MinRangeDropsNearPointsFromBothMaps) {
   p.min_range = 1.0;
   mc::MapCleaner cleaner(p);
   const auto f = mc::test::tinyFrame({{{1, 1}, {0.5f, 0.f, 0.f}}, {{1, 2}, {2.f, 0.f, 0.f}}});
-  cleaner.accumulate(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}),
+  cleaner.map(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}),
                      Eigen::Isometry3d::Identity());
   EXPECT_EQ(cleaner.staticMap().size(), 1u);
 }
@@ -123,7 +126,7 @@ TEST(MapCleaner, VoxelVoteMovesMostlyDynamicVoxels) {
                                       {{1, 2}, {3.7f, 0.5f, 0.5f}}});
   cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
   mask(0, 1) = mask(0, 2) = mask(1, 2) = 255;
-  cleaner.accumulate(f, mask, Eigen::Isometry3d::Identity());
+  cleaner.map(f, mask, Eigen::Isometry3d::Identity());
   EXPECT_EQ(cleaner.finish(), 1u);
   ASSERT_EQ(cleaner.staticMap().size(), 1u);
   EXPECT_NEAR(cleaner.staticMap().points()[0].x, 3.55, 1e-5);  // only B's static points

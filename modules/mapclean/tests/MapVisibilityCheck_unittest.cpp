@@ -127,16 +127,64 @@ TEST(MapVisibilityCheck, UsesTheScanPose) {
   EXPECT_EQ(check.freeViews(0), 1);
 }
 
-TEST(MapCleaner, MoveToDynamicMovesTheGivenVoxels) {
+mc::MapCleaner streamingCleaner() {
   mc::MapCleanParams p;
   p.voxel_size = 1.0;
+  p.visibility = params();
+  p.free_space_stride = 1;
+  return mc::MapCleaner(p);
+}
+
+const cv::Mat_<std::uint8_t> kAllStatic(4, 8, std::uint8_t{0});
+
+TEST(MapCleaner, AVoxelLaterScansSeeThroughMovesToTheDynamicMap) {
+  mc::MapCleaner cleaner = streamingCleaner();
+  const cv::Vec3f person = beam(2, 4, 5.f);
+  cleaner.map(mc::test::tinyFrame({{{2, 4}, person}}), kAllStatic, kOrigin);  // its own hit
+  cleaner.map(frameAt(10.f), kAllStatic, kOrigin);  // then the place is empty: seen through
+  cleaner.map(frameAt(10.f), kAllStatic, kOrigin);
+  const std::size_t mapped = cleaner.staticMap().size();
+  EXPECT_EQ(cleaner.finish(), 0u);
+  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);
+  ASSERT_EQ(cleaner.dynamicMap().size(), 1u);
+  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, person[0], 1e-5);
+  EXPECT_NEAR(cleaner.dynamicMap().points()[0].z, person[2], 1e-5);
+  EXPECT_EQ(cleaner.staticMap().size(), mapped - 1);  // the walls at 10 m stay
+}
+
+dynobj::core::LidarFrame at(dynobj::core::LidarFrame f, double seconds) {
+  f.timestamp_ns = static_cast<std::int64_t>(seconds * 1e9);
+  return f;
+}
+
+TEST(MapCleaner, TheScansOfThePastSecondsCountForANewVoxel) {
+  // One pass: a scan counts against the map as it is then; a voxel new in the map takes the views
+  // of the scans of the last free_space_past seconds (the place seen empty before someone came).
+  mc::MapCleaner cleaner = streamingCleaner();  // free_space_past 30 s
+  cleaner.map(at(frameAt(10.f), 0.0), kAllStatic, kOrigin);
+  cleaner.map(at(frameAt(10.f), 1.0), kAllStatic, kOrigin);
+  const std::size_t before = cleaner.staticMap().size();
+  cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
+  EXPECT_EQ(cleaner.staticMap().size(), before + 1);
+  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);
+  EXPECT_EQ(cleaner.dynamicMap().size(), 1u);
+}
+
+TEST(MapCleaner, ScansOlderThanThePastWindowAreForgotten) {
+  mc::MapCleanParams p;
+  p.voxel_size = 1.0;
+  p.visibility = params();
+  p.visibility.past = 1.5;
+  p.free_space_stride = 1;
   mc::MapCleaner cleaner(p);
-  const auto f = mc::test::tinyFrame({{{0, 0}, {0.5f, 0.5f, 0.5f}}, {{1, 0}, {3.5f, 0.5f, 0.5f}}});
-  cleaner.accumulate(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}), kOrigin);
-  const auto voxels = cleaner.staticMap().voxels();
-  ASSERT_EQ(voxels.size(), 2u);
-  EXPECT_EQ(cleaner.moveToDynamic({voxels[1].key}), 1u);
-  ASSERT_EQ(cleaner.staticMap().size(), 1u);
-  EXPECT_NEAR(cleaner.staticMap().points()[0].x, 0.5, 1e-6);
-  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, 3.5, 1e-6);
+  cleaner.map(at(frameAt(10.f), 0.0), kAllStatic, kOrigin);  // 2 s before the person: forgotten
+  cleaner.map(at(frameAt(10.f), 1.0), kAllStatic, kOrigin);  // 1 s before: one view, < min_views
+  cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
+  EXPECT_EQ(cleaner.moveSeenThrough(), 0u);
+  p.visibility.past = 0;  // none remembered
+  mc::MapCleaner none(p);
+  none.map(at(frameAt(10.f), 1.0), kAllStatic, kOrigin);
+  none.map(at(frameAt(10.f), 1.5), kAllStatic, kOrigin);
+  none.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
+  EXPECT_EQ(none.moveSeenThrough(), 0u);
 }

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// dynobj-mapclean's whole job, streaming (memory grows with the map, not the number of scans):
-//   pass 1: the detector over every scan (or, with `labels`, the label file's sweep of each scan:
+// dynobj-mapclean's whole job in one pass over the input (memory grows with the map, not with the
+// number of scans):
+//   detect: the detector over every scan (or, with `labels`, the label file's sweep of each scan:
 //           the detector is not run), the pose of each scan (FrameRecord: no points kept);
-//   pass 2 (second_pass): every scan again, dynamic = detector + confirmed tracks' boxes, into the
-//           static / dynamic voxel maps, the cleaned simplemap and the KTH export;
-//           (without second_pass this happens during pass 1: on-the-fly, causal);
-//   outputs: static/dynamic .ply, .pointsmap, .txt, top-down PNGs, cleaned .simplemap, poses.tum;
-//   metrics (with ground truth only, after the map is final): SA / DA / AA / ghost points.
+//   map:    each scan backfill_window seconds later (read again by a trailing reader; at once
+//           without back-fill): dynamic = detector + the boxes of tracks confirmed by then, into
+//           the static / dynamic voxel maps (with its free-space views of the map so far), the
+//           cleaned simplemap, the KTH export and poses.tum;
+//   finish: the voxel vote, the voxels seen through; static/dynamic .ply, .pointsmap, .txt,
+//           top-down PNGs, cleaned .simplemap;
+//   metrics (with ground truth only, a further pass after the map is final): SA / DA / AA.
 // Every output file is written as *.partial and renamed when complete; on an error nothing that
 // looks complete is left behind.
 #pragma once
@@ -49,7 +52,7 @@ struct MapCleanOptions {
   core::DetectorParams detector;
   MapCleanParams clean;
   /// Label file v1 (e.g. dynobj-label's): its sweep of each scan is the classification, instead
-  /// of the detector's (no second-pass boxes then); "" = run the detector. Every scan must have
+  /// of the detector's (no back-fill then); "" = run the detector. Every scan must have
   /// its sweep (matched by timestamp, same image size). Not with poses "ego".
   std::string labels;
   std::string ground_truth;  ///< label file v1 (rawlog input) or a labelled gt_cloud.pcd; "" = none

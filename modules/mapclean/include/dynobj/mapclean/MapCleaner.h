@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The map-cleaning logic, without MRPT observations: which points of a scan are dynamic (the
-// detector's mask, plus the optional second pass), and the static / dynamic voxel maps.
+// detector's mask, plus the back-fill), and the static / dynamic voxel maps.
 //
-// Second pass: the detector is causal, so a moving object's first frames (before its movement
-// window has enough history) are not flagged. After the whole sequence has been seen, every track
-// that was ever confirmed dynamic is known; the second pass marks the points inside that track's
-// box (grown by box_margin) in each frame where it was seen, including the frames before it was
-// confirmed. It uses only the detector's output, never ground truth.
+// Back-fill: the detector is causal, so a moving object's first frames (before its movement
+// window has enough history) are not flagged. A scan is mapped only backfill_window seconds after
+// it was detected; by then the tracks confirmed dynamic since are known, and the points inside
+// their boxes (grown by box_margin) in the scan are marked too, including frames before the track
+// was confirmed. Memory: the window's records, not the recording's. It uses only the detector's
+// output, never ground truth.
 #pragma once
 
 #include <dynobj/core/DynamicObjectDetector.h>
@@ -43,21 +44,25 @@ void forEachWorldPoint(const core::LidarFrame& frame, const Eigen::Isometry3d& s
 /// INI section [mapclean]; keys = field names.
 struct MapCleanParams : public core::StageParams {
   double voxel_size = 0.05;  ///< [m] map voxel; 0 = keep every point
-  bool second_pass = true;   ///< mark confirmed tracks' earlier frames (see above)
-  double box_margin = 0.15;  ///< [m] growth of a track's box sideways and upwards (second pass)
+  /// [s] back-fill (see above): how long a scan waits for its tracks to be confirmed; 0 = off
+  /// (each scan mapped as soon as its detection is final: causal)
+  double backfill_window = 30.0;
+  double box_margin = 0.15;  ///< [m] growth of a track's box sideways and upwards (back-fill)
   double min_range = 0.0;    ///< [m] points nearer than this (e.g. the robot itself) are not mapped
   /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
   /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
   double dynamic_vote = 1.0;
-  /// Free-space check (MapVisibilityCheck.h) of the static map after the vote, against every
-  /// free_space_stride-th scan (a further streaming pass over the input; needs voxel_size > 0).
+  /// Free-space check (MapVisibilityCheck.h) of the static map: every free_space_stride-th scan,
+  /// as it is mapped, counts its views of the map so far; after the vote, the voxels seen through
+  /// move to the dynamic map (needs voxel_size > 0).
   bool free_space_check = true;
   /// Level every pose with the scan's floor (GroundLeveler.h): roll, pitch, height from the
   /// ground plane; for planar / drifting pose sources on a level floor. Off: assumes nothing.
   bool level_poses = false;
   int free_space_stride = 2;
   /// The check's own parameters (INI keys free_space_margin, free_space_margin_rel,
-  /// free_space_window, free_space_min_views, free_space_ratio; min_range is the one above).
+  /// free_space_window, free_space_min_views, free_space_ratio, free_space_past; min_range is the
+  /// one above).
   VisibilityParams visibility;
 
   /// `visibility` with this min_range.
@@ -67,14 +72,14 @@ struct MapCleanParams : public core::StageParams {
   void validate() const override;
 };
 
-/// A tracked object of one frame, as the second pass needs it (sensor frame box).
+/// A tracked object of one frame, as the back-fill needs it (sensor frame box).
 struct ObjectBox {
   int id = 0;
   bool dynamic = false;
   Eigen::Vector3f min{0, 0, 0}, max{0, 0, 0};
 };
 
-/// What the first pass keeps per scan: small (no points), so memory stays flat.
+/// What is kept of a scan until it is mapped: small (no points).
 struct FrameRecord {
   std::int64_t timestamp_ns = 0;
   Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  ///< in the world
@@ -86,23 +91,23 @@ class MapCleaner {
  public:
   explicit MapCleaner(const MapCleanParams& p);
 
-  /// First pass: keeps the record's detection and notes the tracks confirmed dynamic.
+  /// A scan's detection: keeps what mapping it needs and notes the tracks confirmed dynamic.
   FrameRecord record(const core::DetectionResult& r, const Eigen::Isometry3d& sensor_pose);
 
-  /// Per-pixel dynamic mask of `frame`: the detector's pixels, plus (second pass) the pixels
-  /// inside the boxes of tracks confirmed dynamic at any time.
-  cv::Mat_<std::uint8_t> dynamicMask(const core::LidarFrame& frame, const FrameRecord& rec,
-                                     bool second_pass) const;
+  /// Per-pixel dynamic mask of `frame`: the detector's pixels, plus (back-fill on) the pixels
+  /// inside the boxes of the tracks confirmed dynamic so far.
+  cv::Mat_<std::uint8_t> dynamicMask(const core::LidarFrame& frame, const FrameRecord& rec) const;
 
-  /// Adds every valid pixel of `frame` (placed with `sensor_pose`) to the static or dynamic map.
-  void accumulate(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
-                  const Eigen::Isometry3d& sensor_pose);
+  /// Maps one scan: every valid pixel (placed with `sensor_pose`) into the static or dynamic map;
+  /// then (every free_space_stride-th scan) its free-space views of the static map so far.
+  void map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
+           const Eigen::Isometry3d& sensor_pose);
 
   /// After the last scan: applies the voxel vote. Returns the voxels moved.
   std::size_t finish();
-  /// Moves the static voxels with these keys (ascending, e.g. MapVisibilityCheck::seenThrough()) to
-  /// the dynamic map. Returns how many moved.
-  std::size_t moveToDynamic(const std::vector<std::uint64_t>& keys);
+  /// After finish(): moves the static voxels the scans saw through to the dynamic map (free-space
+  /// check on). Returns how many moved.
+  std::size_t moveSeenThrough();
 
   const VoxelMap& staticMap() const { return static_; }
   const VoxelMap& dynamicMap() const { return dynamic_; }
@@ -114,6 +119,8 @@ class MapCleaner {
   MapCleanParams p_;
   std::set<int> confirmed_;
   VoxelMap static_, dynamic_;
+  MapVisibilityCheck visibility_;
+  std::size_t mapped_ = 0;  ///< scans mapped
   mutable std::size_t backfilled_ = 0;
 };
 

@@ -11,13 +11,16 @@
 //  - a voxel that scans also see *at* its range (hits) is kept unless the see-through views
 //    outnumber the hits by `ratio`, and at least `min_views` scans must see through it.
 // Streams: the scans are added one at a time (e.g. a pass over the rawlog, or keyframes); memory is
-// the candidate voxels (centre + two counters each), independent of the number of scans.
+// the candidate voxels (centre + two counters each), independent of the number of scans. The
+// candidates are either a fixed list (a finished map) or a growing VoxelMap, whose voxels carry
+// their own counters (dynobj-mapclean's single pass: each scan counts against the map so far).
 #pragma once
 
 #include <dynobj/core/LidarFrame.h>
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -38,6 +41,9 @@ struct VisibilityParams {
   int min_views = 2;         ///< scans that must see through a voxel to remove it
   double ratio = 4.0;        ///< and see-through views >= ratio * hit views
   double min_range = 0.0;    ///< [m] voxels nearer to the sensor than this give no evidence
+  /// [s] a growing map (addScan with a VoxelMap): a voxel new in the map also counts the views
+  /// of the scans added this long before it appeared (the place seen empty before someone came)
+  double past = 30.0;
 };
 
 class MapVisibilityCheck {
@@ -48,23 +54,51 @@ class MapVisibilityCheck {
   MapVisibilityCheck(const MapVisibilityCheck&) = delete;
   MapVisibilityCheck& operator=(const MapVisibilityCheck&) = delete;
 
+  /// No fixed candidates: for addScan(frame, pose, map).
+  explicit MapVisibilityCheck(const VisibilityParams& p);
+
   /// One scan (sensor frame) placed in the world with `sensor_pose`: counts, for every candidate
   /// in its field of view, a see-through view or a hit.
   void addScan(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose);
+  /// The same for every voxel of `map`, into the voxels' own counters; the scan is remembered
+  /// for countPast() (`past` seconds).
+  void addScan(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose, VoxelMap& map);
+  /// Voxels new in `map` (keys): the views of the remembered scans of the `past` seconds before
+  /// `now_ns` (older ones are forgotten).
+  void countPast(VoxelMap& map, const std::vector<std::uint64_t>& keys, std::int64_t now_ns);
 
-  /// Keys of the voxels seen through (the rule above), ascending.
+  /// Keys of the candidates seen through (the rule above), ascending.
   std::vector<std::uint64_t> seenThrough() const;
+  /// The rule: enough scans saw through it, and they outnumber its hits by `ratio`.
+  bool isSeenThrough(const VoxelMap::Views& v) const {
+    return v.free >= p_.min_views && v.free >= p_.ratio * v.hit;
+  }
   std::size_t scans() const { return scans_; }
   /// Counters of candidate i (in the order given), for tests and diagnostics.
-  std::uint16_t freeViews(std::size_t i) const { return free_[i]; }
-  std::uint16_t hitViews(std::size_t i) const { return hit_[i]; }
+  std::uint16_t freeViews(std::size_t i) const { return views_[i].free; }
+  std::uint16_t hitViews(std::size_t i) const { return views_[i].hit; }
 
  private:
+  /// What counting needs of a scan; a remembered one keeps its images in half floats (CV_16F:
+  /// 1.6 cm steps at 20-32 m, far below the margin; half the memory).
+  struct ScanView {
+    std::int64_t timestamp_ns = 0;
+    cv::Mat range;    ///< [m] per pixel (CV_32F or CV_16F), 0 = no return
+    cv::Mat nearest;  ///< per pixel: nearest return of its window (+inf: none)
+    Eigen::Isometry3f to_sensor = Eigen::Isometry3f::Identity();
+    float near = 0, far = 0;
+  };
+  /// The scan as a ScanView (and the projection for its sensor).
+  ScanView prepare(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose);
+  /// Counts one world point's view in `scan` (T: the images' element type).
+  template <class T>
+  void count(const ScanView& scan, float x, float y, float z, VoxelMap::Views& views) const;
+
   VisibilityParams p_;
   std::vector<VoxelCentre> voxels_;
-  std::vector<std::uint16_t> free_, hit_;
+  std::vector<VoxelMap::Views> views_;
   std::unique_ptr<core::SphericalProjection> projection_;
-  cv::Mat_<float> nearest_;  ///< per pixel: nearest return of its window (+inf: none)
+  std::deque<ScanView> past_;  ///< addScan(.., map)'s scans of the last `past` seconds
   std::size_t scans_ = 0;
 };
 

@@ -2,7 +2,7 @@
 // The scans to map, one at a time (memory stays flat): from an MRPT rawlog (LiDAR observations,
 // with the latest odometry seen before each), or from a KTH DynamicMap benchmark folder
 // (pcd/NNNNNN.pcd, points in the world, VIEWPOINT = sensor pose; re-projected into a LiDAR frame
-// with a sensor model). Can be opened again for a second pass.
+// with a sensor model). Can be opened again (a second reader, or rewind()).
 #pragma once
 
 #include <dynobj/core/SensorModel.h>

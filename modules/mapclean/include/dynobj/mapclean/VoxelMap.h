@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A point map that grows with the space it covers, not with the number of scans inserted: one
 // point per occupied voxel (the centroid of the points inserted into it, with their mean
-// intensity). Voxel size 0 keeps every point (no downsampling).
+// intensity), 32 bytes a slot in one hash table (~40-55 bytes a voxel). Voxel size 0 keeps every
+// point (no downsampling).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace dynobj::mapclean {
@@ -27,7 +27,8 @@ class VoxelMap {
   /// `voxel_size` [m] >= 0 (0 = keep every point). Throws std::invalid_argument when negative.
   explicit VoxelMap(double voxel_size = 0.0);
 
-  void insert(const MapPoint& p);
+  /// Adds a point; true when it opened a new voxel (always with voxel size 0).
+  bool insert(const MapPoint& p);
   /// Number of map points (occupied voxels, or inserted points with voxel size 0).
   std::size_t size() const;
   std::size_t pointsInserted() const { return inserted_; }
@@ -47,35 +48,79 @@ class VoxelMap {
 
   /// Points inserted into the voxel `key` (0 when empty). Only for voxel size > 0.
   std::uint32_t countAt(std::uint64_t key) const;
-  /// Moves to `other` (same voxel size) every voxel for which keep(key, count) is false; returns
-  /// how many voxels moved.
+
+  /// Views of a voxel counted by MapVisibilityCheck: scans that saw through it, scans that hit it.
+  struct Views {
+    std::uint16_t free = 0, hit = 0;
+  };
+  /// Calls fn(x, y, z, views) with the centroid and views of every occupied voxel (any order;
+  /// views may be changed). Only for voxel size > 0.
+  template <class Fn>
+  void forEachVoxel(Fn&& fn) {
+    for (Slot& s : slots_)
+      if (s.key != kEmpty) visit(s, fn);
+  }
+  /// The same for the voxels with these keys (absent ones are skipped).
+  template <class Fn>
+  void forVoxels(const std::vector<std::uint64_t>& keys, Fn&& fn) {
+    for (const std::uint64_t key : keys)
+      if (Slot* s = find(key)) visit(*s, fn);
+  }
+  /// Moves to `other` (same voxel size) every voxel for which keep(key, count, views) is false;
+  /// returns how many voxels moved.
   template <class Keep>
   std::size_t moveVoxelsTo(VoxelMap& other, Keep&& keep) {
+    std::vector<Slot> kept;
+    kept.reserve(used_);
     std::size_t moved = 0;
-    for (auto it = cells_.begin(); it != cells_.end();) {
-      if (keep(it->first, it->second.n)) {
-        ++it;
+    for (const Slot& s : slots_) {
+      if (s.key == kEmpty) continue;
+      if (keep(s.key, s.cell.n, s.cell.views)) {
+        kept.push_back(s);
         continue;
       }
-      Cell& dst = other.cells_[it->first];
-      dst.sx += it->second.sx;
-      dst.sy += it->second.sy;
-      dst.sz += it->second.sz;
-      dst.si += it->second.si;
-      dst.n += it->second.n;
-      it = cells_.erase(it);
+      other.merge(s);
       moved++;
     }
+    if (moved) rebuild(kept);
     return moved;
   }
 
  private:
+  /// A voxel: the running mean of its points as an offset from the voxel's corner (float keeps
+  /// sub-micrometre steps there) and of their intensity; 24 bytes.
   struct Cell {
-    double sx = 0, sy = 0, sz = 0, si = 0;
+    float dx = 0, dy = 0, dz = 0, intensity = 0;
     std::uint32_t n = 0;
+    Views views;
   };
+  /// Open addressing, linear probing: one contiguous array (32 bytes a slot), so a pass over
+  /// every voxel (the free-space check, every other scan) streams through memory.
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    Cell cell;
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // keyOf() uses 63 bits
+
+  Slot* find(std::uint64_t key);
+  const Slot* find(std::uint64_t key) const;
+  /// The slot of `key`, opened when absent (the table grows at 70 % load).
+  Slot& slotFor(std::uint64_t key);
+  void merge(const Slot& s);
+  void rebuild(const std::vector<Slot>& slots);
+  /// The corner of voxel `key` [m].
+  void corner(std::uint64_t key, double& x, double& y, double& z) const;
+  MapPoint centroid(const Slot& s) const;
+
+  template <class Fn>
+  void visit(Slot& s, Fn& fn) const {
+    const MapPoint p = centroid(s);
+    fn(p.x, p.y, p.z, s.cell.views);
+  }
+
   double voxel_;
-  std::unordered_map<std::uint64_t, Cell> cells_;
+  std::vector<Slot> slots_;  ///< size a power of two (or empty)
+  std::size_t used_ = 0;
   std::vector<MapPoint> raw_;
   std::size_t inserted_ = 0;
 };
