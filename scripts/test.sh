@@ -7,7 +7,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 # chromium: the HTML report of dynobj-eval and dynobj-label's page are checked in a headless
 # browser; nodejs runs the page's test (DevTools protocol over a pipe, Node's own modules only);
-# parallel: the test of scripts/batch-clean.sh (GNU parallel runs its jobs).
+# parallel: the test of scripts/batch/batch-clean.sh (GNU parallel runs its jobs).
 ensure_packages chromium nodejs parallel clang-format
 BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"
 build_project "$BUILD_DIR" -DDYNOBJ_BUILD_TESTS=ON

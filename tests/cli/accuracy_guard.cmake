@@ -6,7 +6,7 @@
 #   cmake -DBIN=<build>/apps -DSHARE=<share/dynobj> -DTABLE=tests/accuracy_guard.tsv
 #         -DWORK=<scratch dir> [-DMEASURE=ON] [-DONLY=scenario] -P accuracy_guard.cmake
 # MEASURE=ON prints the table again with today's measured values and bounds derived from them
-# (scripts/accuracy-guard.sh --measure): paste it into the table to re-measure after a change.
+# (scripts/accuracy/accuracy-guard.sh --measure): paste it into the table to re-measure after a change.
 cmake_minimum_required(VERSION 3.19)  # string(JSON)
 foreach(v BIN SHARE TABLE WORK)
   if(NOT DEFINED ${v})

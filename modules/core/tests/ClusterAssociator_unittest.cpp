@@ -1,9 +1,105 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// ClusterAssociator::associateMoversFirst on hand-made centroids with exact expected pairings.
+// ClusterAssociator (Eq. 8-13): the cost matrix with its dummies, one global assignment, the
+// gates, and associateMoversFirst, on hand-made centroids with exact expected pairings.
 #include <dynobj/core/ClusterAssociator.h>
+#include <dynobj/core/Config.h>
+#include <dynobj/core/Hungarian.h>
 #include <gtest/gtest.h>
 
+#include <random>
+
 using namespace dynobj::core;
+using V3 = Eigen::Vector3d;
+
+TEST(ClusterAssociator, CostMatrixHasDummies) {
+  AssociationParams p;
+  p.gate_distance = 1.0;
+  const ClusterAssociator a(p);
+  const auto D = a.costMatrix({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)});  // M = 2, N = 1
+  ASSERT_EQ(D.rows(), 3);
+  ASSERT_EQ(D.cols(), 3);
+  EXPECT_DOUBLE_EQ(D(0, 0), 0.5);            // within d_max
+  EXPECT_DOUBLE_EQ(D(1, 0), a.forbidden());  // beyond d_max (Eq. 9)
+  EXPECT_DOUBLE_EQ(D(0, 1), 2.0);            // cluster -> dummy: 2 d_max
+  EXPECT_DOUBLE_EQ(D(1, 2), 2.0);
+  EXPECT_DOUBLE_EQ(D(2, 0), 2.0);  // dummy -> track
+  EXPECT_DOUBLE_EQ(D(2, 1), 0.0);  // dummy -> dummy
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(5, 0, 0)}, {V3(0.5, 0, 0)}), (std::vector<int>{0, -1}));
+}
+
+TEST(ClusterAssociator, GlobalNotGreedy) {
+  // Greedy nearest-neighbour would give cluster 0 track 0 (0.1) and leave cluster 1 with nothing;
+  // the optimum pairs 0-1 and 1-0 (0.6 + 0.5 < 0.1 + 2 * 2 d_max).
+  const ClusterAssociator a;
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(0.6, 0, 0)}, {V3(0.1, 0, 0), V3(-0.6, 0, 0)}),
+            (std::vector<int>{1, 0}));
+}
+
+TEST(ClusterAssociator, ComponentsMatchTheWholeProblem) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-10, 10);
+  const ClusterAssociator a;
+  for (int trial = 0; trial < 30; trial++) {
+    std::vector<V3> cur, pred;
+    for (int i = 0; i < 25; i++) cur.emplace_back(u(rng), u(rng), 0);
+    for (int i = 0; i < 20; i++) pred.emplace_back(u(rng), u(rng), 0);
+    const auto out = a.associate(cur, pred);
+    // Same total cost as the single big Hungarian problem.
+    const Eigen::MatrixXd D = a.costMatrix(cur, pred);
+    double whole = 0;
+    {  // cost of the decomposed answer, completed with dummies
+      double c = 0;
+      int unmatched_tracks = static_cast<int>(pred.size());
+      for (std::size_t m = 0; m < cur.size(); m++) {
+        if (out[m] >= 0) {
+          c += (cur[m] - pred[static_cast<std::size_t>(out[m])]).norm();
+          unmatched_tracks--;
+        } else {
+          c += 2.0;
+        }
+      }
+      c += 2.0 * unmatched_tracks;
+      whole = c;
+    }
+    const std::vector<int> best = solveAssignment(D);
+    EXPECT_NEAR(whole, assignmentCost(D, best), 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(ClusterAssociator, ATrackWithoutVelocityGetsAWiderGateWhenItIsVehicleSized) {
+  // A car at 11 m/s, seen once, is 1.1 m on at the next 10 Hz sweep: beyond d_max = 1 m.
+  AssociationParams p;
+  p.gate_distance = 1.0;
+  p.new_track_speed = 15;
+  p.new_track_length = 1.0;
+  const ClusterAssociator a(p);
+  EXPECT_DOUBLE_EQ(a.gate(0, 4.5), 1.0);    // a velocity known: d_max
+  EXPECT_DOUBLE_EQ(a.gate(0.1, 4.5), 2.5);  // a car seen once, 0.1 s ago
+  EXPECT_DOUBLE_EQ(a.gate(0.2, 4.5), 4.0);  // ... 0.2 s ago
+  EXPECT_DOUBLE_EQ(a.gate(0.1, 0.5), 1.0);  // a walker seen once: d_max
+  EXPECT_DOUBLE_EQ(a.gate(-1, 4.5), 1.0);
+  EXPECT_EQ(a.associate({V3(1.1, 0, 0)}, {V3(0, 0, 0)}), (std::vector<int>{-1}));
+  EXPECT_EQ(a.associate({V3(1.1, 0, 0)}, {V3(0, 0, 0)}, {a.gate(0.1, 4.5)}), (std::vector<int>{0}));
+  EXPECT_EQ(a.associate({V3(2.6, 0, 0)}, {V3(0, 0, 0)}, {a.gate(0.1, 4.5)}),
+            (std::vector<int>{-1}));
+  // Costs stay distances (Eq. 10): a cluster 0.9 m from a track with a velocity goes to it, not to
+  // a wide-gated one 1.2 m away (costs in units of each gate, 0.9 against 0.48, would not).
+  const auto D = a.costMatrix({V3(0, 0, 0)}, {V3(0.9, 0, 0), V3(-1.2, 0, 0)}, {1.0, 2.5});
+  EXPECT_DOUBLE_EQ(D(0, 0), 0.9);
+  EXPECT_DOUBLE_EQ(D(0, 1), 1.2);
+  EXPECT_DOUBLE_EQ(D(0, 2), 2.0);  // cluster -> dummy: 2 d_max
+  EXPECT_EQ(a.associate({V3(0, 0, 0)}, {V3(0.9, 0, 0), V3(-1.2, 0, 0)}, {1.0, 2.5}),
+            (std::vector<int>{0}));
+  EXPECT_EQ(a.associate({V3(0, 0, 0), V3(1.5, 0, 0)}, {V3(0.5, 0, 0), V3(-0.4, 0, 0)}, {1.0, 2.5}),
+            (std::vector<int>{1, 0}));
+  // 0 = the paper: d_max for every track.
+  p.new_track_speed = 0;
+  EXPECT_DOUBLE_EQ(ClusterAssociator(p).gate(0.1, 4.5), 1.0);
+  EXPECT_THROW(a.associate({V3(0, 0, 0)}, {V3(0, 0, 0)}, {1.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(a.costMatrix({V3(0, 0, 0)}, {V3(0, 0, 0)}, {1.0, 1.0}), std::invalid_argument);
+  p.new_track_length = -1;
+  EXPECT_THROW(p.validate(), ParameterError);
+}
 
 namespace {
 

@@ -190,3 +190,46 @@ TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
     EXPECT_EQ(out.size(), 2u) << search;
   }
 }
+
+// Weak clusters (beyond the paper, docs/algorithm.md §5): the components with fewer than
+// min_points features but at least weak_min_points.
+TEST(Clusterer, WeakClustersAreTheComponentsBetweenWeakMinPointsAndMinPoints) {
+  // Components of 3, 2 and 1 points, 1 m apart; min_points 3, weak_min_points 2.
+  LidarFrame f(dynobj::test::smallSensor(16, 64));
+  int i = 0;
+  for (const auto& p : std::vector<std::array<float, 3>>{
+           {5, 0, 0}, {5, 0.1f, 0}, {5, 0.2f, 0}, {5, 1, 0}, {5, 1.1f, 0}, {5, 2, 0}})
+    f.setPixel(8, 10 + 2 * i, 5, 1.f, cv::Vec3f(p[0], p[1], p[2]), i), i++;
+  ClusteringParams p;
+  p.min_points = 3;
+  p.weak_min_points = 2;
+  std::vector<Cluster> out, weak;
+  Clusterer(p).cluster(f, f.valid, out, &weak);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].pixels.size(), 3u);
+  ASSERT_EQ(weak.size(), 1u);
+  EXPECT_EQ(weak[0].pixels.size(), 2u);
+  EXPECT_NEAR(weak[0].centroid.y(), 1.05, 1e-5);
+  // Without a weak output (or with weak_min_points 0) the clusters are the same.
+  std::vector<Cluster> plain;
+  Clusterer(p).cluster(f, f.valid, plain);
+  ASSERT_EQ(plain.size(), 1u);
+  EXPECT_EQ(plain[0].pixels, out[0].pixels);
+  for (int off : {0, 3, 4}) {  // 0 or min_points and above: no weak clusters
+    p.weak_min_points = off;
+    Clusterer(p).cluster(f, f.valid, out, &weak);
+    EXPECT_EQ(out.size(), 1u);
+    EXPECT_TRUE(weak.empty()) << off;
+  }
+}
+
+TEST(Clusterer, NegativeWeakMinPointsIsAnErrorNamingTheKey) {
+  ClusteringParams p;
+  p.weak_min_points = -1;
+  try {
+    p.validate();
+    FAIL() << "no error";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("weak_min_points"), std::string::npos) << e.what();
+  }
+}

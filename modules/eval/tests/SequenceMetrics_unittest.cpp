@@ -85,3 +85,15 @@ TEST(SequenceMetrics, MismatchesAreErrorsNamingTheSweep) {
                 .find("sweep 1 (line 3): ground truth at t = 2 ns, prediction at 3 ns"),
             std::string::npos);
 }
+
+TEST(SequenceMetrics, StaticPointsFlaggedNeedsEverySweepsPointCount) {
+  SequenceMetrics m;
+  // 100 valid points, truth {1, 2}, predicted {2, 3, 4}: TP 1, FP 2, FN 1, TN 96.
+  m.add(1, {1, 2}, {2, 3, 4}, 100, 4.5);
+  EXPECT_EQ(m.total.tn, 96);
+  EXPECT_DOUBLE_EQ(*m.staticFlagged(), 2.0 / 98.0);
+  EXPECT_DOUBLE_EQ(m.sweeps[0].ms, 4.5);
+  m.add(2, {}, {}, -1);  // unknown point count: the static share is no longer known
+  EXPECT_FALSE(m.staticFlagged().has_value());
+  EXPECT_FALSE(SequenceMetrics().staticFlagged().has_value());
+}

@@ -1,56 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/core/SphericalProjection.h>
-#include <dynobj/mrptio/DynamicObjectFilter.h>
+// markDynamic, dropDynamic and restoreDynamic on organized range scans.
 #include <dynobj/mrptio/ObservationConverter.h>
 #include <dynobj/mrptio/ObservationTagging.h>
 #include <dynobj/mrptio/RangeScanLayout.h>
-#include <dynobj/testing/ScratchPath.h>
 #include <gtest/gtest.h>
-#include <mrpt/io/CMemoryStream.h>
-#include <mrpt/io/lazy_load_path.h>
-#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/TPixelLabelInfo.h>
-#include <mrpt/serialization/CArchive.h>
-#include <mrpt/system/filesystem.h>
 
-#include <cmath>
-
+#include "FullScan.h"
 #include "MapInsertion.h"
 #include "SerializationRoundTrip.h"
 
 using namespace dynobj;
 namespace dm = dynobj::mrptio;
 namespace mobs = mrpt::obs;
+using dynobj::test::fullScan;
 
 namespace {
-
-/// An 8 x 64 scan with a return on every pixel's centre ray (ranges 5..12 m), in the organized
-/// layout.
-mobs::CObservation3DRangeScan fullScan() {
-  core::SensorModel s;
-  s.rows = 8;
-  s.cols = 64;
-  s.elevation_top = 14 * M_PI / 180;
-  s.elevation_bottom = -14 * M_PI / 180;
-  s.max_range = 50;
-  const auto el = s.rowElevations();
-  core::PointCloud cloud;
-  for (int r = 0; r < 8; r++)
-    for (int c = 0; c < 64; c++) {
-      const double az = -M_PI + (c + 0.5) * 2 * M_PI / 64, e = el[static_cast<std::size_t>(r)];
-      const double d = 5.0 + (r * 64 + c) % 8;
-      cloud.push_back(static_cast<float>(d * std::cos(e) * std::cos(az)),
-                      static_cast<float>(d * std::cos(e) * std::sin(az)),
-                      static_cast<float>(d * std::sin(e)), 100.0f, static_cast<std::uint16_t>(r),
-                      static_cast<std::uint16_t>(c));
-    }
-  core::LidarFrame f;
-  core::SphericalProjection(s).organize(cloud, f);
-  mobs::CObservation3DRangeScan o;
-  dm::frameToRangeScan(f, o);
-  o.sensorLabel = "LIDAR";
-  return o;
-}
 
 cv::Mat_<std::uint8_t> someMask() {
   cv::Mat_<std::uint8_t> m(8, 64, std::uint8_t{0});
@@ -135,35 +100,4 @@ TEST(RangeScanTagging, BadInputsAreErrors) {
   }
   auto none = fullScan();
   EXPECT_EQ(dm::restoreDynamic(none).points_restored, 0u);  // nothing was dropped: no-op
-}
-
-TEST(DynamicObjectFilter, ExternallyStoredScansPassThroughWithAWarning) {
-  auto scan = std::make_shared<mobs::CObservation3DRangeScan>(fullScan());
-  const std::string dir = dynobj::testing::scratchPath("_ext");
-  mrpt::system::createDirectory(dir);
-  mrpt::io::setLazyLoadPathBase(dir + "/");
-  scan->points3D_convertToExternalStorage("pts.bin", dir + "/");
-  ASSERT_TRUE(scan->points3D_isExternallyStored());
-  dm::DynamicObjectFilter filter({dm::FilterMode::Drop, "", std::nullopt, {}});
-  mrpt::obs::CObservation::Ptr obs = scan;
-  EXPECT_EQ(filter.filter(obs), nullptr);
-  EXPECT_TRUE(scan->points3D_isExternallyStored());  // untouched: its external file is not ours
-  EXPECT_EQ(filter.summary().passed_through, 1u);
-  ASSERT_EQ(filter.summary().warnings.size(), 1u);
-  EXPECT_NE(filter.summary().warnings.begin()->first.find("de-externalize"), std::string::npos);
-  mrpt::io::setLazyLoadPathBase(".");
-}
-
-TEST(DynamicObjectFilter, NonLidarAndOtherLabelsPassThroughUntouched) {
-  dm::DynamicObjectFilter filter({dm::FilterMode::Drop, "LIDAR", std::nullopt, {}});
-  auto other = std::make_shared<mobs::CObservation3DRangeScan>(fullScan());
-  other->sensorLabel = "OTHER";
-  const auto before = other->points3D_x;
-  mrpt::obs::CObservation::Ptr obs = other;
-  EXPECT_EQ(filter.filter(obs), nullptr);
-  EXPECT_EQ(other->points3D_x, before);
-  EXPECT_EQ(filter.summary().observations, 1u);
-  EXPECT_EQ(filter.summary().lidar, 0u);
-  EXPECT_THROW(dm::parseFilterMode("erase"), std::invalid_argument);
-  EXPECT_EQ(std::string(dm::toString(dm::parseFilterMode("split"))), "split");
 }

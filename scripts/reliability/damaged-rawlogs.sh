@@ -6,11 +6,11 @@
 # or exit 1 with a message naming the entry/byte: never a crash, a hang or a leftover .partial.
 # Parallel (JOBS shards) and resumable (results are appended per case; a rerun skips done cases).
 #
-# Usage: scripts/damaged-rawlogs.sh [N=10000] [JOBS=nproc] [ENTRIES=6]
+# Usage: scripts/reliability/damaged-rawlogs.sh [N=10000] [JOBS=nproc] [ENTRIES=6]
 #   DYNOBJ_BUILD_DIR (default build/) must hold a configured build with DYNOBJ_BUILD_TESTS=ON.
 # Output: $OUT (default $DYNOBJ_BUILD_DIR/damaged-rawlogs/), results-<shard>.txt, summary.txt.
 set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 N="${1:-10000}"
 JOBS="${2:-$(nproc)}"
 ENTRIES="${3:-6}"

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Weak clusters (beyond the paper, docs/algorithm.md §5): a cluster with fewer than min_points
-// features but at least weak_min_points seeds the region growing of a track that is already
-// dynamic and found no cluster of its own (coasting); it never starts or confirms a track.
-#include <dynobj/core/Clusterer.h>
-#include <dynobj/core/Config.h>
+// The whole pipeline on rendered scenes. Weak clusters (beyond the paper, docs/algorithm.md §5): a
+// cluster with fewer than min_points features but at least weak_min_points seeds the region
+// growing of a track that is already dynamic and found no cluster of its own (coasting); it never
+// starts or confirms a track.
 #include <dynobj/core/DynamicObjectDetector.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "SyntheticScene.h"
 
 using namespace dynobj::core;
-using dynobj::test::Post;
 using dynobj::test::Scene;
 
 namespace {
@@ -46,48 +46,7 @@ DetectorParams params(int weak_min_points) {
 
 }  // namespace
 
-TEST(Clusterer, WeakClustersAreTheComponentsBetweenWeakMinPointsAndMinPoints) {
-  // Components of 3, 2 and 1 points, 1 m apart; min_points 3, weak_min_points 2.
-  LidarFrame f(dynobj::test::smallSensor(16, 64));
-  int i = 0;
-  for (const auto& p : std::vector<std::array<float, 3>>{
-           {5, 0, 0}, {5, 0.1f, 0}, {5, 0.2f, 0}, {5, 1, 0}, {5, 1.1f, 0}, {5, 2, 0}})
-    f.setPixel(8, 10 + 2 * i, 5, 1.f, cv::Vec3f(p[0], p[1], p[2]), i), i++;
-  ClusteringParams p;
-  p.min_points = 3;
-  p.weak_min_points = 2;
-  std::vector<Cluster> out, weak;
-  Clusterer(p).cluster(f, f.valid, out, &weak);
-  ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(out[0].pixels.size(), 3u);
-  ASSERT_EQ(weak.size(), 1u);
-  EXPECT_EQ(weak[0].pixels.size(), 2u);
-  EXPECT_NEAR(weak[0].centroid.y(), 1.05, 1e-5);
-  // Without a weak output (or with weak_min_points 0) the clusters are the same.
-  std::vector<Cluster> plain;
-  Clusterer(p).cluster(f, f.valid, plain);
-  ASSERT_EQ(plain.size(), 1u);
-  EXPECT_EQ(plain[0].pixels, out[0].pixels);
-  for (int off : {0, 3, 4}) {  // 0 or min_points and above: no weak clusters
-    p.weak_min_points = off;
-    Clusterer(p).cluster(f, f.valid, out, &weak);
-    EXPECT_EQ(out.size(), 1u);
-    EXPECT_TRUE(weak.empty()) << off;
-  }
-}
-
-TEST(Clusterer, NegativeWeakMinPointsIsAnErrorNamingTheKey) {
-  ClusteringParams p;
-  p.weak_min_points = -1;
-  try {
-    p.validate();
-    FAIL() << "no error";
-  } catch (const ParameterError& e) {
-    EXPECT_NE(std::string(e.what()).find("weak_min_points"), std::string::npos) << e.what();
-  }
-}
-
-TEST(Detector, AMoverWhoseFeaturesDipBelowMinPointsStaysFlaggedOnAWeakCluster) {
+TEST(DynamicObjectDetector, AMoverWhoseFeaturesDipBelowMinPointsStaysFlaggedOnAWeakCluster) {
   // The post is dynamic by frame 9; from frame 10 on only its lower 0.4 m remain (fewer
   // features than min_points, more than weak_min_points).
   const std::vector<int> with = walk(params(4), 13, 10, 0.4);
@@ -100,7 +59,7 @@ TEST(Detector, AMoverWhoseFeaturesDipBelowMinPointsStaysFlaggedOnAWeakCluster) {
   }
 }
 
-TEST(Detector, AWeakClusterNeverStartsATrack) {
+TEST(DynamicObjectDetector, AWeakClusterNeverStartsATrack) {
   // The short post walks from the first frame: only weak clusters, never flagged.
   for (int flagged : walk(params(4), 13, 0, 0.4)) EXPECT_EQ(flagged, 0);
 }
@@ -139,7 +98,7 @@ std::vector<std::pair<int, int>> walkPast(bool past_surface_check) {
 
 }  // namespace
 
-TEST(Detector, AMoverDoesNotTakeTheStandingPostItTouches) {
+TEST(DynamicObjectDetector, AMoverDoesNotTakeTheStandingPostItTouches) {
   // The walker is dynamic long before it reaches the post and has travelled 1.5 m over the
   // free-space lookback (1 s), farther than its 0.6 m: the post's points, which the lookback
   // frame saw where they are, are refused to its region (only those among its seeds remain,

@@ -7,8 +7,8 @@
 # (rawlog-dynobj --skip-existing: outputs are only ever complete), so a failed or interrupted
 # batch is resumed by running the same command again.
 #
-#   scripts/batch-clean.sh [-j jobs] [-t threads-per-job] [-S sshlogin]... [-b rawlog-dynobj]
-#                          -o out-dir manifest [-- rawlog-dynobj options...]
+#   scripts/batch/batch-clean.sh [-j jobs] [-t threads-per-job] [-S sshlogin]... [-b rawlog-dynobj]
+#                                -o out-dir manifest [-- rawlog-dynobj options...]
 #
 #   manifest   one rawlog path per line; blank lines and lines starting with # are ignored.
 #              Relative paths are relative to the manifest's folder.
@@ -25,7 +25,7 @@
 # logs), 2 on a bad command line. Example: docs/usage.md, "Batch over many recordings".
 set -euo pipefail
 
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 usage() { sed -n '3,24p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 JOBS=""
 THREADS=2

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Turns the cells of scripts/accuracy-matrix.sh (cells.tsv, one line per scenario x sensor x
+# Turns the cells of scripts/accuracy/accuracy-matrix.sh (cells.tsv, one line per scenario x sensor x
 # seed x distortion) into Markdown: mean and WORST cell overall, per scenario, per sensor, per
 # distortion setting, and a scenario x sensor grid of F1.
-#   scripts/accuracy-matrix-table.sh cells.tsv ["command"] [wall seconds] [cells asked] [config]
+#   scripts/accuracy/accuracy-matrix-table.sh cells.tsv ["command"] [wall seconds] [cells asked] [config]
 #                                    [shipped: 1 = config is the shipped dynobj.ini (default), 0 = not]
 set -euo pipefail
 TSV="$1" CMD="${2:-}" WALL="${3:-}" ASKED="${4:-}" CONFIG="${5:-dynobj.ini}" SHIPPED="${6:-1}"

@@ -8,13 +8,13 @@
 # stock observations2map on the cleaned simplemap of the icp-slam row and on icp-slam's own.
 # Writes out/accuracy/mapclean.md (override the folder: DYNOBJ_ACCURACY_OUT). Time and peak memory
 # come from GNU time (package `time`).
-#   scripts/mapclean-accuracy.sh                     everything
-#   scripts/mapclean-accuracy.sh --ceiling           only the simulation and the four ceiling rows
-#                                                    (they do not depend on the detector)
-#   scripts/mapclean-accuracy.sh --observations2map  only the observations2map comparison
+#   scripts/accuracy/mapclean-accuracy.sh                     everything
+#   scripts/accuracy/mapclean-accuracy.sh --ceiling           only the simulation and the four ceiling rows
+#                                                             (they do not depend on the detector)
+#   scripts/accuracy/mapclean-accuracy.sh --observations2map  only the observations2map comparison
 #   (the two options can be combined)
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
 
 WANT_MAIN=1 WANT_CEILING=1 WANT_O2M=1
 if [ $# -gt 0 ]; then
@@ -68,7 +68,7 @@ run() {
 
 GT_LABELS="$DIR/hall/hall.gt.labels"
 {
-  echo "<!-- made by: scripts/mapclean-accuracy.sh $* -->"
+  echo "<!-- made by: scripts/accuracy/mapclean-accuracy.sh $* -->"
   echo "\`dynobj-sim -s share/dynobj/scenarios/hall.yaml -o hall\`; \`icp-slam share/dynobj/config/icp-slam-hall.ini hall/hall.rawlog\`;"
   echo "per row \`dynobj-mapclean -i hall/hall.rawlog -o <dir> --poses <source> --gt hall/hall.gt.labels [--level-poses] [-c <ablation.ini>] [--labels hall/hall.gt.labels]\`"
   echo "(ceiling rows: \`--labels hall/hall.gt.labels\`, the ground truth as the classification; the detector does not run)"

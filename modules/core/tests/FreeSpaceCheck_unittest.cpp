@@ -1,54 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <dynobj/core/Config.h>
-#include <dynobj/core/EgoMotionEstimator.h>
-#include <dynobj/core/ForegroundExtractor.h>
 #include <dynobj/core/FreeSpaceCheck.h>
 #include <gtest/gtest.h>
 
-#include <random>
+#include <algorithm>
+#include <cmath>
 
 #include "SyntheticScene.h"
 
 using namespace dynobj::core;
+using dynobj::test::Post;
 using dynobj::test::Scene;
-
-TEST(EgoMotionEstimator, RecoversAKnownRigidMotion) {
-  const auto s = dynobj::test::smallSensor(64, 1024);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int trial = 0; trial < 3; trial++) {
-    Scene a;
-    a.posts = {{3, 2, 0.4, 2.0}, {-4, 1, 0.3, 2.5}, {1, -5, 0.5, 1.5}};
-    Scene b = a;  // the sensor moved: T_{a<-b}
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = Eigen::Vector3d(0.3 * u(rng), 0.3 * u(rng), 0.03 * u(rng));
-    T.linear() = Eigen::AngleAxisd(0.06 * u(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                 Eigen::AngleAxisd(0.02 * u(rng), Eigen::Vector3d::UnitX()).toRotationMatrix();
-    b.sensor = T;
-    const LidarFrame fa = dynobj::test::render(a, s, false, 1);
-    const LidarFrame fb = dynobj::test::render(b, s, false, 2);
-    ForegroundExtractor fx;
-    EgoMotionEstimator ego;
-    EXPECT_FALSE(ego.estimate(fa, fx.normalize(fa), {}).ok);  // no previous frame yet
-    const EgoMotion em = ego.estimate(fb, fx.normalize(fb), {});
-    ASSERT_TRUE(em.ok) << "trial " << trial << ": " << em.inliers << "/" << em.matches;
-    EXPECT_EQ(em.source, "intensity");
-    const Eigen::Isometry3d err = T.inverse() * em.motion;
-    EXPECT_LT(err.translation().norm(), 0.03) << "trial " << trial;
-    EXPECT_LT(Eigen::AngleAxisd(err.linear()).angle(), 0.005) << "trial " << trial;
-  }
-}
-
-TEST(EgoMotionEstimator, FeaturelessScenesFailCleanly) {
-  const auto s = dynobj::test::smallSensor(64, 1024);
-  const LidarFrame f = dynobj::test::render(Scene{}, s, true);  // flat intensities: no corners
-  ForegroundExtractor fx;
-  EgoMotionEstimator ego;
-  ego.estimate(f, fx.normalize(f), {});
-  const EgoMotion em = ego.estimate(f, fx.normalize(f), {});
-  EXPECT_FALSE(em.ok);
-  EXPECT_LT(em.inliers, EgoMotionParams().min_inliers);
-}
 
 namespace {
 
@@ -489,30 +451,181 @@ TEST(FreeSpaceCheck, AnObjectComingOutFromBehindAnOccluderHasNotLeftAnySpace) {
   EXPECT_TRUE(left.provesMotion(m.check.params()));
 }
 
-TEST(FreeSpaceEvidence, ASlidingClusterMustShowMoreFreeSpace) {
-  // A see-through fence beside the path slides with the sensor: 6 of its 10 decisive points are
-  // seen through (free). Enough for a walker (min_free_ratio 0.5), not for a cluster that slides
-  // along itself like a wall's visible part (slide_free_ratio 0.75); a car shows 9 of 10.
-  const FreeSpaceParams p;
-  FreeSpaceEvidence fence;
-  fence.free = 6;
-  fence.occupied = 4;
-  EXPECT_TRUE(fence.provesMotion(p));
-  EXPECT_TRUE(fence.supportsMotion(p));
-  EXPECT_FALSE(fence.provesMotion(p, true));
-  EXPECT_FALSE(fence.supportsMotion(p, true));
-  FreeSpaceEvidence car;
-  car.free = 9;
-  car.occupied = 1;
-  EXPECT_TRUE(car.provesMotion(p, true));
-  FreeSpaceEvidence little;  // too little evidence: no verdict either way
-  little.free = 2;
-  EXPECT_TRUE(little.supportsMotion(p, true));
-  EXPECT_FALSE(little.provesMotion(p, true));
-  FreeSpaceParams off = p;  // at or below min_free_ratio: the same test as any cluster
-  off.slide_free_ratio = 0;
-  EXPECT_TRUE(fence.provesMotion(off, true));
-  FreeSpaceParams bad = p;
-  bad.slide_free_ratio = 1.5;
+// FreeSpaceParams::exclude_own_past (docs/algorithm.md 7b): a long object that moves along itself
+// by less than its length covered its own rear part in the past frame; those points are no
+// evidence either way.
+
+namespace {
+
+/// A "car" of five touching posts (x from 0 to 2.4 m, 3 m to the left of a still sensor) that
+/// drove 1 m forward (+x) between frame 0 and frame 1: its rear 1.4 m is where its front was.
+struct CarAlong : dynobj::test::TwoStillFrames {
+  Cluster car;  ///< frame 1's points on it
+
+  /// Five touching posts from x = `x0` - 0.3 on.
+  static Scene car5(double x0) {
+    Scene s;
+    for (int i = 0; i < 5; i++) s.posts.push_back({x0 + 0.45 * i, 3, 0.3, 1.8});
+    return s;
+  }
+  explicit CarAlong(const FreeSpaceParams& p = {})
+      : TwoStillFrames(car5(0.3), car5(1.3), dynobj::test::smallSensor(32, 720), p) {
+    for (int r = 0; r < f1.rows(); r++)
+      for (int c = 0; c < f1.cols(); c++) {
+        const cv::Vec3f& q = f1.xyz(r, c);
+        if (f1.isValid(r, c) && std::abs(q[1] - 3) < 0.5 && q[0] < 5 && q[2] > -0.7f)
+          car.pixels.push_back(r * f1.cols() + c);
+      }
+  }
+  FreeSpaceEvidence evidence(bool own_past) const {
+    return check.evidence(f1, 1, car, 0, chain, Eigen::Vector3d(1, 0, 0), {}, own_past);
+  }
+};
+
+}  // namespace
+
+TEST(FreeSpaceCheck, ALongObjectsRearWhereItsFrontWasIsNoEvidence) {
+  const CarAlong t;
+  ASSERT_GT(t.car.pixels.size(), 40u);
+  // Every point counted: the rear was the car itself then, and outweighs the new front.
+  const FreeSpaceEvidence all = t.evidence(false);
+  EXPECT_GT(all.occupied, all.free);
+  EXPECT_FALSE(all.provesMotion(t.check.params()));
+  EXPECT_EQ(all.free + all.occupied + all.unknown, static_cast<int>(t.car.pixels.size()));
+  // Its own past body left out: only the front 1 m (+ margin) is asked, and it was free then.
+  const FreeSpaceEvidence front = t.evidence(true);
+  EXPECT_EQ(front.occupied, 0);
+  EXPECT_GE(front.free, t.check.params().min_evidence);
+  EXPECT_TRUE(front.provesMotion(t.check.params(), true));  // even as a sliding cluster
+  EXPECT_EQ(front.free + front.occupied + front.unknown, static_cast<int>(t.car.pixels.size()));
+  // Which points are left out follows the motion's direction: read backwards (the car reversing
+  // 1 m), the part left out is the other end, and the evidence differs.
+  const FreeSpaceEvidence reversed =
+      t.check.evidence(t.f1, 1, t.car, 0, t.chain, Eigen::Vector3d(-1, 0, 0), {}, true);
+  EXPECT_GT(reversed.occupied, 0);
+}
+
+TEST(FreeSpaceCheck, ReviewLeavesOutTheOwnPastOnlyForARigidMoverAndWhenOn) {
+  MovementDecision rigid;  // a rigid long object moving along itself at 1 m/s (dt 1 s)
+  rigid.enough_history = rigid.candidate = rigid.rigid = rigid.slides = true;
+  rigid.velocity = Eigen::Vector3d(1, 0, 0);
+  FreeSpaceParams p;
+  p.lookback = 1;
+  p.max_lookback = 1;
+  const CarAlong on(p);
+  MovementDecision d = rigid;
+  on.check.review(on.f1, 1, on.car, on.chain, 1.0, d);
+  EXPECT_FALSE(d.static_surface);
+  MovementDecision not_rigid = rigid;  // a compact or non-rigid candidate: every point counts
+  not_rigid.rigid = not_rigid.slides = false;
+  on.check.review(on.f1, 1, on.car, on.chain, 1.0, not_rigid);
+  EXPECT_TRUE(not_rigid.static_surface);
+  p.exclude_own_past = false;
+  const CarAlong off(p);
+  d = rigid;
+  off.check.review(off.f1, 1, off.car, off.chain, 1.0, d);
+  EXPECT_TRUE(d.static_surface);
+}
+
+// Thin surfaces in the free-space test (docs/algorithm.md 7b, thin_frames): a fence's bar or wire
+// thinner than the angle between two rays is missed by a past sweep's rays about as often as it
+// is hit, so a point whose surface the rays do not resolve, seen through in the past frame, is
+// free only where the frames beside it saw through it too (else no evidence either way).
+
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+/// A post 3 m from the sensor at azimuth `az_deg`, radius `radius`.
+Post postAt(double az_deg, double radius) {
+  return {3 * std::cos(az_deg * kDeg), 3 * std::sin(az_deg * kDeg), radius, 1.8};
+}
+
+/// Frames of a still sensor (360 columns: 1 degree each, 32 rows), chained and remembered: the
+/// post is in the frames where `seen` is true, missed by the rays of the others.
+struct StillFrames {
+  std::vector<LidarFrame> frames;
+  FrameChain chain;
+  FreeSpaceCheck check;
+  Cluster post;  ///< the last frame's pixels on the post
+
+  StillFrames(const Post& p, const std::vector<bool>& seen, const FreeSpaceParams& params)
+      : check(params, seen.size()) {
+    const SensorModel s = dynobj::test::smallSensor(32, 360);
+    for (std::size_t j = 0; j < seen.size(); j++) {
+      Scene scene;
+      if (seen[j]) scene.posts.push_back(p);
+      frames.push_back(dynobj::test::render(scene, s, true, 1 + static_cast<std::int64_t>(j)));
+      chain.push(static_cast<long>(j), Eigen::Isometry3d::Identity(), true);
+      if (j + 1 < seen.size()) check.remember(static_cast<long>(j), frames.back());
+    }
+    const LidarFrame& f = frames.back();
+    for (int r = 0; r < f.rows(); r++)
+      for (int c = 0; c < f.cols(); c++)
+        if (f.isValid(r, c) && f.range(r, c) < 4 && f.xyz(r, c)[2] > -0.9f)
+          post.pixels.push_back(r * f.cols() + c);
+  }
+  int columns() const {
+    std::vector<int> cs;
+    for (int px : post.pixels) cs.push_back(px % frames.back().cols());
+    std::sort(cs.begin(), cs.end());
+    return static_cast<int>(std::unique(cs.begin(), cs.end()) - cs.begin());
+  }
+  FreeSpaceEvidence evidence(long past) const {
+    const long current = static_cast<long>(frames.size()) - 1;
+    return check.evidence(frames.back(), current, post, past, chain);
+  }
+};
+
+FreeSpaceParams thinFrames(int n) {
+  FreeSpaceParams p;
+  p.thin_frames = n;
+  return p;
+}
+
+}  // namespace
+
+TEST(FreeSpaceCheck, AnUnresolvedPointIsAlsoAskedOfTheFramesBesideThePastOne) {
+  // A 2 cm wire 3 m away, on one column's ray only (0.4 of the 1-degree column): seen in frame 0,
+  // missed by the rays of frames 1 and 2 (they fell beside it), seen now (frame 3).
+  const Post wire = postAt(90.5, 0.01);
+  const std::vector<bool> seen = {true, false, false, true};
+  const StillFrames alone(wire, seen, thinFrames(0));
+  ASSERT_EQ(alone.columns(), 1);
+  const int n = static_cast<int>(alone.post.pixels.size());
+  ASSERT_GE(n, 5);
+  EXPECT_FALSE(alone.check.resolved(alone.frames.back(), alone.post.pixels[0]));
+  // Against frame 1 alone: every point seen through, the motion "proven".
+  const FreeSpaceEvidence one = alone.evidence(1);
+  EXPECT_EQ(one.free, n);
+  EXPECT_TRUE(one.provesMotion(alone.check.params()));
+  // With the frames beside it (0 and 2): frame 0 met it, so no point is evidence either way.
+  const StillFrames beside(wire, seen, thinFrames(1));
+  const FreeSpaceEvidence three = beside.evidence(1);
+  EXPECT_EQ(three.free, 0);
+  EXPECT_EQ(three.occupied, 0);
+  EXPECT_EQ(three.unknown, n);
+  EXPECT_FALSE(three.provesMotion(beside.check.params()));
+  // A frame beside it that met it does not make a point occupied; the past frame itself does.
+  const StillFrames there(wire, {false, true, false, true}, thinFrames(1));
+  EXPECT_EQ(there.evidence(1).occupied, n);
+  // Missed by every frame tried (2, and 1 and 3 beside it; frame 4 is the current one): a mover.
+  const StillFrames missed(wire, {true, false, false, false, true}, thinFrames(1));
+  const FreeSpaceEvidence gone = missed.evidence(2);
+  EXPECT_EQ(gone.free, n);
+  EXPECT_EQ(gone.occupied, 0);
+  FreeSpaceParams bad;
+  bad.thin_frames = -1;
   EXPECT_THROW(bad.validate(), ParameterError);
+}
+
+TEST(FreeSpaceCheck, AResolvedPointIsAskedOfThePastFrameAlone) {
+  // A post 0.6 m wide (11 columns): every point has a ray beside it in its row and in its column
+  // on the post, so frame 0, which saw it, is not asked; frames 1 and 2 missed it.
+  const StillFrames t(postAt(90, 0.3), {true, false, false, true}, thinFrames(2));
+  ASSERT_GE(t.columns(), 9);
+  for (int px : t.post.pixels) EXPECT_TRUE(t.check.resolved(t.frames.back(), px)) << px;
+  const FreeSpaceEvidence e = t.evidence(2);
+  EXPECT_EQ(e.occupied, 0);
+  EXPECT_EQ(e.free, static_cast<int>(t.post.pixels.size()));
 }

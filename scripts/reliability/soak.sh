@@ -3,9 +3,9 @@
 # Soak: SWEEPS simulated sweeps (default 36,000 = one hour at 10 Hz, OS0-64 512 x 10, the hall
 # scenario) through the observation filter (drop mode), resident memory sampled every EVERY sweeps.
 # Writes $OUT/soak.csv and prints the memory after warm-up (first sample after 10 % of the run),
-# at the end, and the largest sample. Usage: scripts/soak.sh [SWEEPS=36000] [EVERY=600]
+# at the end, and the largest sample. Usage: scripts/reliability/soak.sh [SWEEPS=36000] [EVERY=600]
 set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 SWEEPS="${1:-36000}"
 EVERY="${2:-600}"
 BUILD="${DYNOBJ_BUILD_DIR:-$ROOT/build}"

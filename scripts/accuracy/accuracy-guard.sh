@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # The accuracy regression guard outside ctest (the same check as ctest -R accuracy_guard):
-#   scripts/accuracy-guard.sh            check tests/accuracy_guard.tsv, print measured vs bound
-#   scripts/accuracy-guard.sh --measure  print the table re-measured (values and bounds), to paste
-#                                        into tests/accuracy_guard.tsv after a detector change
-#   scripts/accuracy-guard.sh [--measure] <scenario>   one row only
+#   scripts/accuracy/accuracy-guard.sh            check tests/accuracy_guard.tsv, print measured vs bound
+#   scripts/accuracy/accuracy-guard.sh --measure  print the table re-measured (values and bounds), to paste
+#                                                 into tests/accuracy_guard.tsv after a detector change
+#   scripts/accuracy/accuracy-guard.sh [--measure] <scenario>   one row only
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
 MEASURE=OFF
 if [ "${1:-}" = "--measure" ]; then MEASURE=ON; shift; fi
 BUILD_DIR="${DYNOBJ_BUILD_DIR:-$DYNOBJ_ROOT/build}"

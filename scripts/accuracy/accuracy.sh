@@ -2,37 +2,37 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Regenerates the accuracy tables (docs/accuracy.md). Each option writes one Markdown file in
 # out/accuracy/ (override: DYNOBJ_ACCURACY_OUT) headed by the commands that made it:
-#   scripts/accuracy.sh [scenario ...]  Table I: simulates each shipped scenario (300 sweeps, its own
-#                                       seed), runs this detector (own intensity ego-motion,
-#                                       ground-truth ego-motion, drifting odometry) and MRPT's
-#                                       CPointCloudFilterByDistance: accuracy.md + one report each
-#   scripts/accuracy.sh --ablations     hall, one key changed at a time
-#   scripts/accuracy.sh --seeds         the RANSAC seed's effect: [ego_motion] seed 1-3
-#   scripts/accuracy.sh --os0-128       hall at 128 x 2048, defaults vs the OS0-128 preset INI
-#   scripts/accuracy.sh --quick-matrix  23 cells of 100 sweeps: seeds the defaults were never tuned on
-#   scripts/accuracy.sh --held-out      the same on seed 201 (+ six other sensor cells): checked only
-#                                       after a change was chosen on the quick matrix
-#   scripts/accuracy.sh --ego-error     the ego-motion error against the simulator's true
-#                                       poses, with and without [ego_refinement]
-#   scripts/accuracy.sh --realdata      real HDL-64 streets without labels: label-free consistency and
-#                                       ICP agreement on ../shared/realdata/kitti-hdl64-city-22 and,
-#                                       when DYNOBJ_DATA2 names it, the 154-sweep data_2 folder
-#   scripts/accuracy.sh --real          real recordings, human labels: data_2 (DYNOBJ_DATA2, the
-#                                       154-sweep folder) against KITTI's boxes
-#                                       (../shared/realdata/kitti-tracking-0000), online and offline,
-#                                       per class; then --realdata. Skips clearly without the data.
-#   scripts/accuracy.sh --real-ablations the same data_2 score with each switch of the shipped INI
-#                                       flipped (REAL_ABLATIONS below), online and offline F1
-#   scripts/accuracy.sh --mapclean      the map-cleaning tables (scripts/mapclean-accuracy.sh)
-#   scripts/accuracy.sh --all           every section above
-#   scripts/accuracy.sh --matrix [...]  the full evaluation matrix (scripts/accuracy-matrix.sh --help)
+#   scripts/accuracy/accuracy.sh [scenario ...]  Table I: simulates each shipped scenario (300 sweeps, its own
+#                                                seed), runs this detector (own intensity ego-motion,
+#                                                ground-truth ego-motion, drifting odometry) and MRPT's
+#                                                CPointCloudFilterByDistance: accuracy.md + one report each
+#   scripts/accuracy/accuracy.sh --ablations     hall, one key changed at a time
+#   scripts/accuracy/accuracy.sh --seeds         the RANSAC seed's effect: [ego_motion] seed 1-3
+#   scripts/accuracy/accuracy.sh --os0-128       hall at 128 x 2048, defaults vs the OS0-128 preset INI
+#   scripts/accuracy/accuracy.sh --quick-matrix  23 cells of 100 sweeps: seeds the defaults were never tuned on
+#   scripts/accuracy/accuracy.sh --held-out      the same on seed 201 (+ six other sensor cells): checked only
+#                                                after a change was chosen on the quick matrix
+#   scripts/accuracy/accuracy.sh --ego-error     the ego-motion error against the simulator's true
+#                                                poses, with and without [ego_refinement]
+#   scripts/accuracy/accuracy.sh --realdata      real HDL-64 streets without labels: label-free consistency and
+#                                                ICP agreement on ../shared/realdata/kitti-hdl64-city-22 and,
+#                                                when DYNOBJ_DATA2 names it, the 154-sweep data_2 folder
+#   scripts/accuracy/accuracy.sh --real          real recordings, human labels: data_2 (DYNOBJ_DATA2, the
+#                                                154-sweep folder) against KITTI's boxes
+#                                                (../shared/realdata/kitti-tracking-0000), online and offline,
+#                                                per class; then --realdata. Skips clearly without the data.
+#   scripts/accuracy/accuracy.sh --real-ablations the same data_2 score with each switch of the shipped INI
+#                                                flipped (REAL_ABLATIONS below), online and offline F1
+#   scripts/accuracy/accuracy.sh --mapclean      the map-cleaning tables (scripts/accuracy/mapclean-accuracy.sh)
+#   scripts/accuracy/accuracy.sh --all           every section above
+#   scripts/accuracy/accuracy.sh --matrix [...]  the full evaluation matrix (scripts/accuracy/accuracy-matrix.sh --help)
 set -euo pipefail
 HERE="$(dirname "${BASH_SOURCE[0]}")"
 if [ "${1:-}" = "--matrix" ]; then
   shift
   exec "$HERE/accuracy-matrix.sh" "$@"
 fi
-source "$HERE/common.sh"
+source "$HERE/../common.sh"
 
 ensure_packages jq
 use_apps  # BUILD_DIR, BIN, OUT (common.sh; DYNOBJ_SKIP_BUILD=1: use the build as it is)
@@ -69,7 +69,7 @@ table1() {
   local scenarios=("$@") summary="$OUT/accuracy.md"
   [ ${#scenarios[@]} -gt 0 ] || scenarios=(hall corridor crossing street static)
   {
-    echo "<!-- made by: scripts/accuracy.sh ${scenarios[*]} -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh ${scenarios[*]} -->"
     echo "Per scenario: \`dynobj-eval --run share/dynobj/scenarios/<s>.yaml -o $OUT/<s> -q\`"
     echo
   } > "$summary.partial"
@@ -136,7 +136,7 @@ ablations() {
   log "ablations: simulating hall (300 sweeps)"
   simulate hall "$dir/sim"
   {
-    echo "<!-- made by: scripts/accuracy.sh --ablations -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --ablations -->"
     echo "Per variant: \`dynobj-sim -s share/dynobj/scenarios/hall.yaml -o sim\`, then"
     echo "\`dynobj-eval --run sim -o <variant> --modes intensity -c <dynobj.ini + the changed keys>\`"
     echo
@@ -160,7 +160,7 @@ seeds() {
   local dir="$OUT/seeds" md="$OUT/seeds.md" s seed
   mkdir -p "$dir"
   {
-    echo "<!-- made by: scripts/accuracy.sh --seeds -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --seeds -->"
     echo "Per scenario: \`dynobj-sim -s share/dynobj/scenarios/<s>.yaml -o sim\`, then per RANSAC seed"
     echo "\`dynobj-eval --run sim --modes intensity -c <dynobj.ini with [ego_motion] seed = S>\`"
     echo
@@ -189,7 +189,7 @@ os0_128() {
   simulate hall "$dir/hall-128" --frames 100 --set sensor=sensors/os0-128-2048.ini
   simulate hall "$dir/hall-64" --frames 100
   {
-    echo "<!-- made by: scripts/accuracy.sh --os0-128 -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --os0-128 -->"
     echo "\`dynobj-sim -s share/dynobj/scenarios/hall.yaml --frames 100 [--set sensor=sensors/os0-128-2048.ini] -o sim\`,"
     echo "then \`dynobj-eval --run sim --modes intensity -c <config>\`"
     echo
@@ -213,7 +213,7 @@ QUICK=("hall 101" "hall 102" "corridor 101" "corridor 102" "crossing 101" "cross
        "parking 101" "parking 102" "warehouse 101" "warehouse 102" "plaza 101" "plaza 102"
        "crowd 101" "corner 101")
 # HELD_OUT: seed 201 of every scenario and six other sensor cells, looked at only after a change
-# was chosen on QUICK (scripts/accuracy.sh --held-out).
+# was chosen on QUICK (scripts/accuracy/accuracy.sh --held-out).
 HELD_OUT=("hall 201" "corridor 201" "crossing 201" "street 201" "parking 201" "warehouse 201"
           "plaza 201" "crowd 201" "corner 201" "static 201" "street 201 vlp-16" "plaza 201 hdl-32"
           "crowd 201 os1-32" "parking 201 vlp-16" "hall 201 os0-64-512" "corner 201 os1-64-2048")
@@ -225,7 +225,7 @@ quick_matrix() {
   shift
   mkdir -p "$dir"
   {
-    echo "<!-- made by: scripts/accuracy.sh --$name -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --$name -->"
     echo "Per cell: \`dynobj-sim -s share/dynobj/scenarios/<s>.yaml --seed <S> -n 100 [--set sensor=sensors/<preset>.ini] -o sim\`,"
     echo "then \`dynobj-eval --run sim --modes intensity -c $(basename "$CONFIG")\`"
     echo
@@ -263,7 +263,7 @@ ego_error() {
   mkdir -p "$dir"
   { cat "$CONFIG"; printf '\n[ego_refinement]\nenabled = false\n'; } > "$dir/no-refinement.ini"
   {
-    echo "<!-- made by: scripts/accuracy.sh --ego-error -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --ego-error -->"
     echo "Per sequence: \`dynobj-sim -s share/dynobj/scenarios/<s>.yaml --seed <S> -n 100 -o sim\`, then"
     echo "\`dynobj-detect -i sim/<name>.rawlog --ego-truth sim/<name>.gt.tum -c <config>\` (translation / rotation RMS per frame pair, max translation)"
     echo
@@ -303,7 +303,7 @@ realdata() {
   local dir="$OUT/realdata" md="$OUT/realdata.md" name src txt
   mkdir -p "$dir"
   {
-    echo "<!-- made by: ${DYNOBJ_ACCURACY_CONFIG:+DYNOBJ_ACCURACY_CONFIG=$(basename "$CONFIG") }scripts/accuracy.sh --realdata -->"
+    echo "<!-- made by: ${DYNOBJ_ACCURACY_CONFIG:+DYNOBJ_ACCURACY_CONFIG=$(basename "$CONFIG") }scripts/accuracy/accuracy.sh --realdata -->"
     echo "Per recording: \`dynobj-import -i <folder or pcap> -o <name>.rawlog\` (the sample is a rawlog already), then"
     echo "\`dynobj-detect -i <name>.rawlog -c $(basename "$CONFIG") --consistency <name>.png --check-ego\`"
     echo
@@ -390,7 +390,7 @@ real() {
   log "real: data_2 against KITTI's boxes (online and offline)"
   real_eval "$dir/data_2" -c "$CONFIG"
   {
-    echo "<!-- made by: scripts/accuracy.sh --real -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --real -->"
     echo "\`dynobj-eval --run data_2 --truth kitti-tracking-0000/label_02_0000.txt --calib kitti-tracking-0000/calib.txt -o <dir>\`"
     echo "(points in the front camera's view, 0.2 m band around moving boxes left out; summed over all sweeps)"
     echo
@@ -437,7 +437,7 @@ real_ablations() {
   real_ready || return 0
   mkdir -p "$dir"
   {
-    echo "<!-- made by: scripts/accuracy.sh --real-ablations -->"
+    echo "<!-- made by: scripts/accuracy/accuracy.sh --real-ablations -->"
     echo "Per variant: \`dynobj-eval --run data_2 --truth <KITTI boxes> --calib <calib> -c <dynobj.ini + the changed key>\`"
     echo
     echo "| variant | online F1 | change | offline F1 | change |"

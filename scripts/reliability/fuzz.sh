@@ -5,12 +5,12 @@
 # Findings (crash-*, leak-*, oom-*, timeout-*) go to $OUT/artifacts/<harness>/; the corpus grows in
 # $OUT/corpus/<harness>/ (reused by the next run). Not part of CI (see docs/performance.md).
 #
-# Usage: scripts/fuzz.sh SECONDS [harness ...]      (default: all harnesses)
+# Usage: scripts/reliability/fuzz.sh SECONDS [harness ...]      (default: all harnesses)
 #   FUZZ_JOBS=2   harnesses run at the same time (default 1)
 #   DYNOBJ_FUZZ_BUILD_DIR (default build-fuzz/)
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-SECONDS_EACH="${1:?usage: scripts/fuzz.sh SECONDS [harness ...]}"
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
+SECONDS_EACH="${1:?usage: scripts/reliability/fuzz.sh SECONDS [harness ...]}"
 shift
 ALL=(label_file pose_file pcd kitti_bin ouster_metadata ouster_pcap detector_params scenario_yaml rawlog)
 HARNESSES=("${@:-${ALL[@]}}")
@@ -46,7 +46,7 @@ run_one() {
 }
 
 mkdir -p "$OUT"
-echo "# $(date -u +%FT%TZ) scripts/fuzz.sh $SECONDS_EACH ${HARNESSES[*]} (FUZZ_JOBS=$JOBS)" >>"$OUT/summary.txt"
+echo "# $(date -u +%FT%TZ) scripts/reliability/fuzz.sh $SECONDS_EACH ${HARNESSES[*]} (FUZZ_JOBS=$JOBS)" >>"$OUT/summary.txt"
 running=0
 for h in "${HARNESSES[@]}"; do
   run_one "$h" &

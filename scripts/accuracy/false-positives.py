@@ -7,10 +7,10 @@ scenery (no actor: walls, parked cars, vegetation...). Reads the simulator's .gt
 .gt.instances and .gt.objects.csv (docs/formats.md) beside the predictions; never used by the
 detector.
 
-Usage: scripts/false-positives.py <sim dir> <scenario name> <pred.labels>
+Usage: scripts/accuracy/false-positives.py <sim dir> <scenario name> <pred.labels>
   e.g. dynobj-sim -s share/dynobj/scenarios/plaza.yaml --seed 101 -n 100 -o sim
        dynobj-detect -i sim/plaza.rawlog -o pred.labels
-       scripts/false-positives.py sim plaza pred.labels
+       scripts/accuracy/false-positives.py sim plaza pred.labels
 """
 import collections
 import csv

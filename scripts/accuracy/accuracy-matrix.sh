@@ -5,13 +5,13 @@
 # distortion off/on, each cell simulated (dynobj-sim --seed --set sensor=... --set
 # motion_distortion=...) and scored with the shipped detector configuration
 # (dynobj-eval --run <cell> --modes intensity), then one Markdown table with the mean and the
-# WORST cell per scenario, per sensor and overall (scripts/accuracy-matrix-table.sh).
+# WORST cell per scenario, per sensor and overall (scripts/accuracy/accuracy-matrix-table.sh).
 #
-#   scripts/accuracy-matrix.sh [-j N] [-n FRAMES] [--seeds "1 2 3 4 5"] [--scenarios "hall plaza"]
-#                              [--sensors "vlp-16 os0-64"] [--distortion both|off|on]
-#                              [--intensity auto|scenario|ouster|velodyne] [-c detector.ini]
-#                              [-o OUT]
-#                              [--keep] [--no-build]
+#   scripts/accuracy/accuracy-matrix.sh [-j N] [-n FRAMES] [--seeds "1 2 3 4 5"] [--scenarios "hall plaza"]
+#                                       [--sensors "vlp-16 os0-64"] [--distortion both|off|on]
+#                                       [--intensity auto|scenario|ouster|velodyne] [-c detector.ini]
+#                                       [-o OUT]
+#                                       [--keep] [--no-build]
 #
 # DYNOBJ_BUILD_DIR (default build/) is built first unless --no-build; DYNOBJ_BIN_DIR (default
 # <build>/apps) may point at installed binaries instead, e.g. a frozen copy while you rebuild.
@@ -21,10 +21,10 @@
 # --intensity auto (default) gives Velodyne presets (vlp-*, hdl-*) Velodyne 0-255 intensities and
 # Ouster presets Ouster signal; `scenario` keeps what each scenario says; `ouster` / `velodyne`
 # force one model everywhere. Also reachable as
-# `scripts/accuracy.sh --matrix ...`. Output: OUT/matrix.md, OUT/cells.tsv (one line per cell).
+# `scripts/accuracy/accuracy.sh --matrix ...`. Output: OUT/matrix.md, OUT/cells.tsv (one line per cell).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-source "$HERE/common.sh"
+source "$HERE/../common.sh"
 
 # One cell (internal: the script calls itself through xargs). Environment: BIN, OUT, FRAMES,
 # CONFIG, KEEP, INTENSITY.
@@ -113,7 +113,7 @@ wall=$(( $(date +%s) - t0 ))
   for c in "${cells[@]}"; do set -- $c; f="$OUT/cells/$1/$2/s$3-$4/result.tsv"; [ -f "$f" ] && cat "$f"; done
 } > "$OUT/cells.tsv"
 done_cells=$(( $(wc -l < "$OUT/cells.tsv") - 1 ))
-cmd="scripts/accuracy-matrix.sh -n $FRAMES --seeds \"$SEEDS\" --distortion $DISTORTION --intensity $INTENSITY -j $JOBS"
+cmd="scripts/accuracy/accuracy-matrix.sh -n $FRAMES --seeds \"$SEEDS\" --distortion $DISTORTION --intensity $INTENSITY -j $JOBS"
 shipped=0  # the table names the configuration: the shipped one by its name, a given one in full
 [ "$CONFIG" = "$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini" ] && shipped=1
 "$HERE/accuracy-matrix-table.sh" "$OUT/cells.tsv" "$cmd" "$wall" "${#cells[@]}" "$([ $shipped = 1 ] && basename "$CONFIG" || echo "$CONFIG")" "$shipped" > "$OUT/matrix.md.partial"

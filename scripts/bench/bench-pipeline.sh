@@ -6,7 +6,7 @@
 # N runs, ms per LiDAR sweep, the ratio to the stock copy, CPU time (user + sys) and peak RSS
 # (GNU time). Outputs go to a scratch folder that is removed at the end.
 #
-#   scripts/bench-pipeline.sh [-n runs] [-l "levels"] [-t "threads"] [-b build-dir] <in.rawlog>
+#   scripts/bench/bench-pipeline.sh [-n runs] [-l "levels"] [-t "threads"] [-b build-dir] <in.rawlog>
 #
 # Defaults: 3 runs, levels "0 1 2 3", threads "1 <cores>", build dir ./build. The figures in
 # docs/performance.md were made with it. Nothing here asserts a time: it only measures.
@@ -15,7 +15,7 @@ set -euo pipefail
 RUNS=3
 LEVELS="0 1 2 3"
 THREADS="1 $(nproc)"
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="$ROOT/build"
 usage() { sed -n '3,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 while getopts "n:l:t:b:h" opt; do
