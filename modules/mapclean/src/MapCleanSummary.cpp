@@ -35,10 +35,9 @@ std::string pct(const std::optional<double>& v) {
 
 std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
   std::string out;
-  const std::string backfill =
-      o.clean.backfill_window > 0 && o.labels.empty()
-          ? fmt("back-fill window %.3g s", o.clean.backfill_window)
-          : std::string("no back-fill");
+  const std::string backfill = o.clean.backfill_window > 0 && o.labels.empty()
+                                   ? fmt("back-fill window %.3g s", o.clean.backfill_window)
+                                   : std::string("no back-fill");
   out += fmt("dynobj-mapclean: %zu scans, poses: %s%s, %s\n", s.scans, s.poses.c_str(),
              o.clean.level_poses ? " (leveled with the floor)" : "", backfill.c_str());
   if (!o.labels.empty())

@@ -105,11 +105,11 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
 
 std::size_t MapCleaner::finish() {
   if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
-  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t key, std::uint32_t n_static,
-                                            VoxelMap::Views) {
-    return static_cast<double>(n_static) * p_.dynamic_vote >
-           static_cast<double>(dynamic_.countAt(key));
-  });
+  return static_.moveVoxelsTo(dynamic_,
+                              [&](std::uint64_t key, std::uint32_t n_static, VoxelMap::Views) {
+                                return static_cast<double>(n_static) * p_.dynamic_vote >
+                                       static_cast<double>(dynamic_.countAt(key));
+                              });
 }
 
 std::size_t MapCleaner::moveSeenThrough() {

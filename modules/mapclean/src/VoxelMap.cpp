@@ -148,7 +148,8 @@ std::vector<MapPoint> VoxelMap::points() const {
   order.reserve(used_);
   for (const Slot& s : slots_)
     if (s.key != kEmpty) order.push_back(&s);
-  std::sort(order.begin(), order.end(), [](const Slot* a, const Slot* b) { return a->key < b->key; });
+  std::sort(order.begin(), order.end(),
+            [](const Slot* a, const Slot* b) { return a->key < b->key; });
   std::vector<MapPoint> out;
   out.reserve(order.size());
   for (const Slot* s : order) out.push_back(centroid(*s));

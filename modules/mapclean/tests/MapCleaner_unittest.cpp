@@ -100,8 +100,7 @@ TEST(MapCleaner, MinRangeDropsNearPointsFromBothMaps) {
   p.min_range = 1.0;
   mc::MapCleaner cleaner(p);
   const auto f = mc::test::tinyFrame({{{1, 1}, {0.5f, 0.f, 0.f}}, {{1, 2}, {2.f, 0.f, 0.f}}});
-  cleaner.map(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}),
-                     Eigen::Isometry3d::Identity());
+  cleaner.map(f, cv::Mat_<std::uint8_t>(4, 8, std::uint8_t{0}), Eigen::Isometry3d::Identity());
   EXPECT_EQ(cleaner.staticMap().size(), 1u);
 }
 
