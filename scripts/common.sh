@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Shared by scripts/demo.sh and scripts/test.sh: install what is missing (Debian bookworm
+# Sourced by every script (demo.sh, test.sh, sanitize.sh, accuracy/, reliability/ ...): install what is missing (Debian bookworm
 # packages only), then configure and build incrementally. Idempotent: a second run installs
 # nothing and rebuilds only what changed.
 set -euo pipefail
