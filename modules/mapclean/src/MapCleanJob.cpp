@@ -8,12 +8,15 @@
 #include <dynobj/mrptio/SequenceRunner.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <deque>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <stdexcept>
 
+#include "dynobj/mapclean/ChunkMerge.h"
 #include "dynobj/mapclean/GroundLeveler.h"
 #include "dynobj/mapclean/KthExport.h"
 #include "dynobj/mapclean/MrptOutputs.h"
@@ -91,8 +94,74 @@ std::vector<std::string> outputFiles(const MapCleanOptions& o) {
     for (const char* png : {"map.png", "static.png"}) files.push_back(o.out_dir + "/" + png);
   files.push_back(o.out_dir + "/poses.tum");
   if (f.simplemap) files.push_back(o.out_dir + "/cleaned.simplemap");
+  if (o.chunk)
+    for (const char* name : {"overlap.tum", "chunk.ini"}) files.push_back(o.out_dir + "/" + name);
   if (!o.export_kth.empty()) files.push_back(o.export_kth);
   return files;
+}
+
+std::string ChunkRange::describe() const {
+  const auto s = [](double t) {
+    char b[40];
+    std::snprintf(b, sizeof(b), "%.9g s", t);
+    return std::string(b);
+  };
+  return s(from) + " to " + (std::isfinite(to) ? s(to) : std::string("the end"));
+}
+
+void ChunkRange::validate() const {
+  if (!(from >= 0) || !std::isfinite(from))
+    throw std::invalid_argument("--from must be a time >= 0 [s] since the first scan");
+  if (!(to > from)) throw std::invalid_argument("--to must be later than --from: " + describe());
+  if (!(overlap > 0) || !std::isfinite(overlap))
+    throw std::invalid_argument(
+        "--overlap must be > 0 s: the chunks are aligned by the scans they share");
+}
+
+std::vector<std::string> writeMaps(const std::string& out_dir, const MapFormats& f,
+                                   const std::vector<MapPoint>& st, const std::vector<MapPoint>& dy,
+                                   double png_resolution) {
+  std::vector<std::string> files;
+  for (const auto& [name, pts] : {std::pair{"static", &st}, std::pair{"dynamic", &dy}}) {
+    const std::string base = out_dir + "/" + name;
+    if (f.ply) writePly(files.emplace_back(base + ".ply"), *pts);
+    if (f.pointsmap) writePointsMapFile(files.emplace_back(base + ".pointsmap"), *pts);
+    if (f.txt) writePointsMapText(files.emplace_back(base + ".txt"), *pts);
+  }
+  if (f.png) {
+    const TopDownView view = TopDownView::fit(st, dy, png_resolution);
+    const std::vector<LegendEntry> legend = {
+        {cv::Scalar(200, 200, 200), "static (brighter = higher)"},
+        {cv::Scalar(0, 0, 255), "dynamic (removed)"}};
+    cv::Mat map = renderTopDown(view, st, dy), clean = renderTopDown(view, st, {});
+    drawLegendAndScale(map, view, legend);
+    drawLegendAndScale(clean, view, {legend[0]});
+    io::writePngAtomically(files.emplace_back(out_dir + "/map.png"), map);
+    io::writePngAtomically(files.emplace_back(out_dir + "/static.png"), clean);
+  }
+  return files;
+}
+
+MapScores scoreMap(const std::vector<MapPoint>& st, double tolerance, ScanSource* scans,
+                   const mrptio::GroundTruth* labels, const std::string& gt_pcd,
+                   const std::vector<io::TimedPose>& poses, double min_range,
+                   const MapCleanProgress& progress) {
+  MapEvaluator eval(st, tolerance);
+  if (!labels) {
+    for (const MapPoint& p : readPcd(gt_pcd).points) eval.add(p.x, p.y, p.z, p.intensity != 0.f);
+    return eval.scores();
+  }
+  Scan scan;
+  std::size_t k = 0;  // the poses are in the scans' order
+  while (k < poses.size() && scans->next(scan)) {
+    if (scan.frame.timestamp_ns != poses[k].timestamp_ns) continue;  // not mapped (an overlap)
+    const cv::Mat_<std::uint8_t> gt = labels->mask(scan.frame, scan.index);
+    forEachWorldPoint(scan.frame, poses[k].pose, min_range, [&](int r, int c, const MapPoint& p) {
+      eval.add(p.x, p.y, p.z, gt(r, c) != 0);
+    });
+    if (progress) progress("evaluate", ++k, poses.size());
+  }
+  return eval.scores();
 }
 
 MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& progress) {
@@ -114,14 +183,33 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
       throw std::runtime_error("label file '" + o.labels + "' does not exist");
     labels.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
   }
+  // A chunk: only its scans are mapped; those of the overlap before and after are read too.
+  std::int64_t first_scan = 0, own_begin = std::numeric_limits<std::int64_t>::min(),
+               own_end = std::numeric_limits<std::int64_t>::max();
   auto source = openScanSource(o.input, o.scan_options);
+  const auto window = [&](std::unique_ptr<ScanSource> scans) -> std::unique_ptr<ScanSource> {
+    if (!o.chunk) return scans;
+    const auto overlap = static_cast<std::int64_t>(std::llround(o.chunk->overlap * 1e9));
+    return std::make_unique<TimeWindowSource>(
+        std::move(scans), own_begin - overlap,
+        own_end == std::numeric_limits<std::int64_t>::max() ? own_end : own_end + overlap);
+  };
+  if (o.chunk) {
+    o.chunk->validate();
+    first_scan = firstScanTime(*source);
+    own_begin = first_scan + static_cast<std::int64_t>(std::llround(o.chunk->from * 1e9));
+    if (std::isfinite(o.chunk->to))
+      own_end = first_scan + static_cast<std::int64_t>(std::llround(o.chunk->to * 1e9));
+    source = window(std::move(source));
+  }
   PoseSourceOptions pose_options = o.pose_options;
   pose_options.ego_available = !labels;
   auto poses = makePoseSource(o.poses, pose_options);
   mrptio::SequenceOptions pass1;  // detection, ground truth checked against every scan
   pass1.detector = o.detector;
   pass1.detect = !labels;
-  pass1.single_sensor = true;  // one LiDAR per map
+  pass1.single_sensor = true;       // one LiDAR per map
+  pass1.require_frames = !o.chunk;  // a chunk's range without a scan: said below
   if (!o.ground_truth.empty()) {
     if (!fs::is_regular_file(o.ground_truth))
       throw std::runtime_error("ground truth '" + o.ground_truth + "' does not exist");
@@ -146,9 +234,22 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   if (!o.export_kth.empty())
     exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr, o.overwrite);
   io::TumWriter tum(out + "poses.tum", "sensor pose in the world, as mapped by dynobj-mapclean");
-  std::vector<Eigen::Isometry3d> mapped_poses;  // for the metrics' pass (a few MB per hour)
+  std::vector<io::TimedPose> mapped_poses;     // for the metrics' pass (a few MB per hour)
+  std::unique_ptr<io::TumWriter> overlap_tum;  // a chunk's scans read but not mapped
+  if (o.chunk)
+    overlap_tum = std::make_unique<io::TumWriter>(
+        out + "overlap.tum", "sensor pose of the scans a dynobj-mapclean chunk read, not mapped");
+  std::int64_t last_mapped = 0;
+  const auto own = [&](std::int64_t t) { return t >= own_begin && t < own_end; };
 
   const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
+    if (!own(rec.timestamp_ns)) {  // a chunk's overlap: its views count, its points are not mapped
+      cleaner.look(s.frame, rec.sensor_pose);
+      overlap_tum->write(rec.timestamp_ns, rec.sensor_pose);
+      (rec.timestamp_ns < own_begin ? sum.scans_before : sum.scans_after)++;
+      return;
+    }
+    last_mapped = rec.timestamp_ns;
     const cv::Mat_<std::uint8_t> mask = cleaner.dynamicMask(s.frame, rec);
     cleaner.map(s.frame, mask, rec.sensor_pose);
     if (simplemap) simplemap->add(s, mask, rec.sensor_pose);
@@ -158,7 +259,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
       exporter->add(s.frame, rec.sensor_pose, gt_labels ? &gt : nullptr);
     }
     tum.write(rec.timestamp_ns, rec.sensor_pose);
-    if (!o.ground_truth.empty()) mapped_poses.push_back(rec.sensor_pose);
+    if (!o.ground_truth.empty()) mapped_poses.push_back({rec.timestamp_ns, rec.sensor_pose});
     report("map", ++sum.scans, 0);
   };
 
@@ -168,7 +269,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   const bool backfill = !labels && o.clean.backfill_window > 0;
   const auto window_ns = static_cast<std::int64_t>(o.clean.backfill_window * 1e9);
   std::unique_ptr<ScanSource> trailing;
-  if (backfill) trailing = openScanSource(o.input, o.scan_options);
+  if (backfill) trailing = window(openScanSource(o.input, o.scan_options));
   std::deque<FrameRecord> waiting;
   Scan scan;
   const auto mapOldest = [&] {
@@ -204,6 +305,10 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   });
   while (!waiting.empty()) mapOldest();
   sum.poses = poses->describe();  // after the first scan: what "auto" chose
+  const bool reached_end = o.chunk && dynamic_cast<const TimeWindowSource&>(*source).reachedEnd();
+  if (o.chunk && sum.scans == 0)
+    throw std::runtime_error("no scan of " + source->describe() + " from " + o.chunk->describe() +
+                             " after its first scan");
 
   sum.voted = cleaner.finish();
   sum.seen_through = cleaner.moveSeenThrough();
@@ -214,26 +319,9 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   sum.map_dynamic = dy.size();
   sum.backfilled = cleaner.backfilledPixels();
   sum.confirmed_tracks = cleaner.confirmedTracks().size();
-  for (const auto& [name, pts] : {std::pair{"static", &st}, std::pair{"dynamic", &dy}}) {
-    const std::string base = out + name;
-    if (o.formats.ply) writePly(base + ".ply", *pts);
-    if (o.formats.pointsmap) writePointsMapFile(base + ".pointsmap", *pts);
-    if (o.formats.txt) writePointsMapText(base + ".txt", *pts);
-  }
-  if (o.formats.png) {
-    const TopDownView view = TopDownView::fit(st, dy, o.png_resolution);
-    const std::vector<LegendEntry> legend = {
-        {cv::Scalar(200, 200, 200), "static (brighter = higher)"},
-        {cv::Scalar(0, 0, 255), "dynamic (removed)"}};
-    cv::Mat map = renderTopDown(view, st, dy), clean = renderTopDown(view, st, {});
-    drawLegendAndScale(map, view, legend);
-    drawLegendAndScale(clean, view, {legend[0]});
-    io::writePngAtomically(out + "map.png", map);
-    io::writePngAtomically(out + "static.png", clean);
-  }
+  sum.files = writeMaps(o.out_dir, o.formats, st, dy, o.png_resolution);
   tum.close();
-  for (const std::string& f : outputFiles(o))
-    if (f != o.export_kth && f != out + "cleaned.simplemap") sum.files.push_back(f);
+  sum.files.push_back(out + "poses.tum");
   if (simplemap) {
     simplemap->close();
     sum.keyframes = simplemap->keyframes();
@@ -247,21 +335,28 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   }
 
   if (!o.ground_truth.empty()) {  // metrics: the final static map against every GT point
-    MapEvaluator eval(st, o.tolerance);
-    if (gt_labels) {
-      source->rewind();
-      for (std::size_t k = 0; k < mapped_poses.size() && source->next(scan); k++) {
-        const cv::Mat_<std::uint8_t> gt = gt_labels->mask(scan.frame, scan.index);
-        forEachWorldPoint(
-            scan.frame, mapped_poses[k], o.clean.min_range,
-            [&](int r, int c, const MapPoint& p) { eval.add(p.x, p.y, p.z, gt(r, c) != 0); });
-        report("evaluate", k + 1, mapped_poses.size());
-      }
-    } else {
-      for (const MapPoint& p : readPcd(o.ground_truth).points)
-        eval.add(p.x, p.y, p.z, p.intensity != 0.f);
-    }
-    sum.scores = eval.scores();
+    source->rewind();
+    sum.scores = scoreMap(st, o.tolerance, source.get(), gt_labels, o.ground_truth, mapped_poses,
+                          o.clean.min_range, progress);
+  }
+  if (o.chunk) {
+    overlap_tum->close();
+    sum.files.push_back(out + "overlap.tum");
+    ChunkInfo info;
+    info.input = o.input;
+    info.first_scan_ns = first_scan;
+    info.range = *o.chunk;
+    info.scans = sum.scans;
+    info.scans_before = sum.scans_before;
+    info.scans_after = sum.scans_after;
+    info.reached_end = reached_end;
+    info.last_scan = 1e-9 * static_cast<double>(last_mapped - first_scan);
+    info.voxel_size = o.clean.voxel_size;
+    info.dynamic_vote = o.clean.dynamic_vote;
+    info.min_range = o.clean.min_range;
+    info.poses = sum.poses;
+    info.formats = o.formats.toString();
+    info.write(sum.files.emplace_back(out + "chunk.ini"));
   }
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sum;

@@ -103,13 +103,16 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
   return mask;
 }
 
+std::size_t voteVoxels(VoxelMap& stat, VoxelMap& dynamic, double vote) {
+  if (vote <= 0 || stat.voxelSize() <= 0) return 0;
+  return stat.moveVoxelsTo(
+      dynamic, [&](std::uint64_t key, std::uint32_t n_static, VoxelMap::Views) {
+        return static_cast<double>(n_static) * vote > static_cast<double>(dynamic.countAt(key));
+      });
+}
+
 std::size_t MapCleaner::finish() {
-  if (p_.dynamic_vote <= 0 || p_.voxel_size <= 0) return 0;
-  return static_.moveVoxelsTo(dynamic_,
-                              [&](std::uint64_t key, std::uint32_t n_static, VoxelMap::Views) {
-                                return static_cast<double>(n_static) * p_.dynamic_vote >
-                                       static_cast<double>(dynamic_.countAt(key));
-                              });
+  return voteVoxels(static_, dynamic_, p_.dynamic_vote);
 }
 
 std::size_t MapCleaner::moveSeenThrough() {
@@ -129,11 +132,14 @@ void MapCleaner::map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>
     else if (static_.insert(p) && check)
       opened.push_back(static_.keyOf(p.x, p.y, p.z));
   });
-  if (check) {
-    visibility_.countPast(static_, opened, frame.timestamp_ns);
-    if (mapped_ % static_cast<std::size_t>(p_.free_space_stride) == 0)
-      visibility_.addScan(frame, sensor_pose, static_);
-  }
+  if (check) visibility_.countPast(static_, opened, frame.timestamp_ns);
+  look(frame, sensor_pose);
+}
+
+void MapCleaner::look(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose) {
+  if (p_.free_space_check && p_.voxel_size > 0 &&
+      mapped_ % static_cast<std::size_t>(p_.free_space_stride) == 0)
+    visibility_.addScan(frame, sensor_pose, static_);
   mapped_++;
 }
 

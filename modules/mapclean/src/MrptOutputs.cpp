@@ -57,6 +57,30 @@ void CleanedSimplemapWriter::close() {
   io::commitPartial(path_);
 }
 
+std::size_t mergeSimplemaps(const std::vector<std::pair<std::string, Eigen::Isometry3d>>& parts,
+                            const std::string& path) {
+  mrpt::maps::CSimpleMap merged;
+  for (const auto& [file, transform] : parts) {
+    mrpt::maps::CSimpleMap part;
+    bool ok = false;
+    try {
+      ok = part.loadFromFile(file);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (!ok) throw std::runtime_error("cannot read the simplemap '" + file + "'");
+    part.changeCoordinatesOrigin(mrptio::toCPose3D(transform));
+    for (std::size_t k = 0; k < part.size(); k++) merged.insert(part.getAsPair(k));
+  }
+  const std::string partial = io::partialName(path);
+  if (!merged.saveToFile(partial)) {
+    std::remove(partial.c_str());
+    throw std::runtime_error(io::cannotWriteMessage(path) + " (simplemap)");
+  }
+  io::commitPartial(path);
+  return merged.size();
+}
+
 namespace {
 
 mrpt::maps::CPointsMapXYZI toPointsMap(const std::vector<MapPoint>& points) {

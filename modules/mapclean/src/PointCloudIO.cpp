@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// MapPoint adapters over dynobj::io's PCD reader and writer, and the PLY writer.
+// MapPoint adapters over dynobj::io's PCD reader and writer; the PLY writer and reader.
 #include "dynobj/mapclean/PointCloudIO.h"
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 namespace dynobj::mapclean {
@@ -48,6 +51,61 @@ void writePly(const std::string& path, const std::vector<MapPoint>& points) {
     f.stream().write(reinterpret_cast<const char*>(v), sizeof(v));
   }
   f.commit();
+}
+
+std::vector<MapPoint> readPly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) io::throwFormatError(path, "cannot open it");
+  std::string line;
+  if (!std::getline(in, line) || line != "ply") io::throwFormatError(path, "not a PLY file");
+  std::size_t count = 0;
+  bool in_vertex = false, have_count = false;
+  std::vector<std::string> props;
+  for (;;) {
+    if (!std::getline(in, line)) io::throwFormatError(path, "no end_header");
+    std::istringstream ls(line);
+    std::string word;
+    ls >> word;
+    if (word == "end_header") break;
+    if (word == "format") {
+      std::string f;
+      ls >> f;
+      if (f != "binary_little_endian")
+        io::throwFormatError(path, "format " + f + ": only binary_little_endian is read");
+    } else if (word == "element") {
+      std::string name;
+      ls >> name;
+      in_vertex = name == "vertex";
+      if (!in_vertex && have_count)  // elements after the vertices are not read
+        continue;
+      if (!in_vertex) io::throwFormatError(path, "element '" + name + "' before the vertices");
+      ls >> count;
+      have_count = true;
+    } else if (word == "property" && in_vertex) {
+      std::string type, name;
+      ls >> type >> name;
+      if (type != "float" && type != "float32")
+        io::throwFormatError(path, "vertex property '" + name + "' is " + type + ", not float");
+      props.push_back(name);
+    }
+  }
+  const auto index = [&](const char* name) {
+    const auto it = std::find(props.begin(), props.end(), name);
+    return it == props.end() ? -1 : static_cast<int>(it - props.begin());
+  };
+  const int ix = index("x"), iy = index("y"), iz = index("z"), ii = index("intensity");
+  if (!have_count || ix < 0 || iy < 0 || iz < 0)
+    io::throwFormatError(path, "no vertex element with x, y, z");
+  std::vector<MapPoint> points(count);
+  std::vector<float> v(props.size());
+  for (std::size_t k = 0; k < count; k++) {
+    if (!in.read(reinterpret_cast<char*>(v.data()),
+                 static_cast<std::streamsize>(v.size() * sizeof(float))))
+      io::throwFormatError(
+          path, "truncated: " + std::to_string(k) + " of " + std::to_string(count) + " vertices");
+    points[k] = {v[ix], v[iy], v[iz], ii < 0 ? 0.f : v[ii]};
+  }
+  return points;
 }
 
 }  // namespace dynobj::mapclean

@@ -99,4 +99,39 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& input,
       mrptio::RawlogFrameSource::Options{opts.sensor_label});
 }
 
+std::int64_t firstScanTime(ScanSource& source) {
+  std::int64_t t = 0;
+  if (!source.nextTime(t))
+    throw std::runtime_error("no LiDAR scan in " + source.describe() + source.noFramesDetail());
+  source.rewind();
+  return t;
+}
+
+TimeWindowSource::TimeWindowSource(std::unique_ptr<ScanSource> source, std::int64_t begin_ns,
+                                   std::int64_t end_ns)
+    : source_(std::move(source)), begin_ns_(begin_ns), end_ns_(end_ns) {
+  source_->skipBefore(begin_ns_);
+}
+
+void TimeWindowSource::rewind() {
+  source_->rewind();
+  source_->skipBefore(begin_ns_);
+  reached_end_ = done_ = false;
+}
+
+bool TimeWindowSource::next(Scan& s) {
+  while (!done_) {
+    if (!source_->next(s)) {
+      reached_end_ = done_ = true;
+      break;
+    }
+    if (s.frame.timestamp_ns >= end_ns_) {
+      done_ = true;
+      break;
+    }
+    if (s.frame.timestamp_ns >= begin_ns_) return true;
+  }
+  return false;
+}
+
 }  // namespace dynobj::mapclean

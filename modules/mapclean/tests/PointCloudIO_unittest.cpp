@@ -135,3 +135,56 @@ TEST(PointCloudIO, PlyHeaderAndSize) {
   std::memcpy(v, s.data() + end + 11 + 16, sizeof(v));
   EXPECT_EQ(v[3], 8.f);
 }
+
+TEST(PointCloudIO, PlyRoundTrip) {
+  const std::string f = tmp("rt.ply");
+  const std::vector<mc::MapPoint> pts = {{1, 2, 3, 4}, {-5.5f, 6, 7e3f, 0}};
+  mc::writePly(f, pts);
+  const std::vector<mc::MapPoint> back = mc::readPly(f);
+  ASSERT_EQ(back.size(), 2u);
+  for (std::size_t i = 0; i < 2; i++) {
+    EXPECT_EQ(back[i].x, pts[i].x);
+    EXPECT_EQ(back[i].y, pts[i].y);
+    EXPECT_EQ(back[i].z, pts[i].z);
+    EXPECT_EQ(back[i].intensity, pts[i].intensity);
+  }
+}
+
+TEST(PointCloudIO, PlyWithoutIntensityOrWithOtherFloats) {
+  const std::string f = tmp("other.ply");
+  const float v[4] = {9, 1, 2, 3};  // nx x y z
+  std::ofstream(f, std::ios::binary)
+      << "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float nx\n"
+         "property float x\nproperty float y\nproperty float z\nend_header\n"
+      << std::string(reinterpret_cast<const char*>(v), sizeof(v));
+  const auto p = mc::readPly(f);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].x, 1.f);
+  EXPECT_EQ(p[0].z, 3.f);
+  EXPECT_EQ(p[0].intensity, 0.f);
+}
+
+TEST(PointCloudIO, PlyErrorsNameTheFileAndTheProblem) {
+  const auto message = [](const std::string& path) {
+    try {
+      mc::readPly(path);
+    } catch (const mc::PointCloudFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string f = tmp("bad.ply");
+  writeText(f, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n");
+  EXPECT_NE(message(f).find("bad.ply: format ascii: only binary_little_endian"), std::string::npos);
+  writeText(f,
+            "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n"
+            "property float y\nproperty float z\nend_header\n123456789012");
+  EXPECT_NE(message(f).find("truncated: 1 of 2 vertices"), std::string::npos);
+  writeText(f,
+            "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double x\n"
+            "end_header\n");
+  EXPECT_NE(message(f).find("vertex property 'x' is double"), std::string::npos);
+  EXPECT_NE(message(tmp("none.ply")).find("cannot open it"), std::string::npos);
+  writeText(f, "PCD\n");
+  EXPECT_NE(message(f).find("not a PLY file"), std::string::npos);
+}

@@ -5,6 +5,7 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include "dynobj/mrptio/PoseConversion.h"
+#include "dynobj/mrptio/TimeConversion.h"
 
 namespace dynobj::mrptio {
 
@@ -20,6 +21,7 @@ void RawlogFrameSource::rewind() {
   pending_pos_ = 0;
   frames_ = 0;
   odometry_.reset();
+  skip_before_ns_ = std::numeric_limits<std::int64_t>::min();
 }
 
 std::string RawlogFrameSource::noFramesDetail() const {
@@ -29,7 +31,7 @@ std::string RawlogFrameSource::noFramesDetail() const {
          std::string("; labels seen:") + (seen.empty() ? " none" : seen);
 }
 
-bool RawlogFrameSource::next(Frame& f) {
+mrpt::obs::CObservation::Ptr RawlogFrameSource::nextObservation() {
   for (;;) {
     while (pending_pos_ < pending_.size()) {
       const auto obs = pending_[pending_pos_++];
@@ -41,25 +43,43 @@ bool RawlogFrameSource::next(Frame& f) {
       }
       if (!ObservationConverter::isLidarObservation(*obs)) continue;
       if (!opts_.sensor_label.empty() && obs->sensorLabel != opts_.sensor_label) continue;
-      f.stats = converter_.convert(*obs, f.frame);
-      mrpt::poses::CPose3D mount;
-      obs->getSensorPose(mount);
-      f.index = frames_++;
-      f.entry = entry_.index;
-      f.where = "'" + path_ + "' entry " + std::to_string(entry_.index);
-      f.sensor_label = obs->sensorLabel;
-      f.mount = toIsometry(mount);
-      f.odometry = odometry_;
-      f.viewpoint.reset();
-      f.observation = obs;
-      return true;
+      if (toUnixNs(obs->timestamp) < skip_before_ns_) {
+        frames_++;
+        continue;
+      }
+      return obs;
     }
-    if (!reader_->next(entry_)) return false;
-    if (entry_.index > opts_.to) return false;
+    if (!reader_->next(entry_)) return nullptr;
+    if (entry_.index > opts_.to) return nullptr;
     pending_.clear();
     pending_pos_ = 0;
     if (entry_.index >= opts_.from) pending_ = entry_.observations();
   }
+}
+
+bool RawlogFrameSource::nextTime(std::int64_t& timestamp_ns) {
+  const auto obs = nextObservation();
+  if (!obs) return false;
+  frames_++;
+  timestamp_ns = toUnixNs(obs->timestamp);
+  return true;
+}
+
+bool RawlogFrameSource::next(Frame& f) {
+  const auto obs = nextObservation();
+  if (!obs) return false;
+  f.stats = converter_.convert(*obs, f.frame);
+  mrpt::poses::CPose3D mount;
+  obs->getSensorPose(mount);
+  f.index = frames_++;
+  f.entry = entry_.index;
+  f.where = "'" + path_ + "' entry " + std::to_string(entry_.index);
+  f.sensor_label = obs->sensorLabel;
+  f.mount = toIsometry(mount);
+  f.odometry = odometry_;
+  f.viewpoint.reset();
+  f.observation = obs;
+  return true;
 }
 
 }  // namespace dynobj::mrptio

@@ -15,8 +15,11 @@
 #pragma once
 
 #include <dynobj/core/DynamicObjectDetector.h>
+#include <dynobj/io/PoseFile.h>
+#include <dynobj/mrptio/GroundTruth.h>
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +45,21 @@ struct MapFormats {
   std::string toString() const;  ///< "ply,png,simplemap"
 };
 
+/// A chunk of a long recording (dynobj-mapclean --from/--to; docs/mapclean.md "Long recordings in
+/// chunks"): only the scans from `from` to `to` seconds after the input's first scan are mapped;
+/// the `overlap` seconds before and after are read too, for the detector's warm-up, the free-space
+/// views and the back-fill, and their poses let mergeChunks() align the chunks. The output folder
+/// also gets chunk.ini (ChunkInfo) and overlap.tum (the poses of the scans read but not mapped).
+struct ChunkRange {
+  double from = 0.0;                                    ///< [s] since the input's first scan
+  double to = std::numeric_limits<double>::infinity();  ///< [s] (excluded); inf = the end
+  double overlap = 30.0;                                ///< [s] > 0
+  /// Throws std::invalid_argument naming --from, --to or --overlap.
+  void validate() const;
+  /// "60 s to 120 s", "120 s to the end".
+  std::string describe() const;
+};
+
 struct MapCleanOptions {
   std::string input;           ///< .rawlog or a KTH DynamicMap folder
   std::string out_dir;         ///< created if missing
@@ -62,6 +80,7 @@ struct MapCleanOptions {
   double keyframe_distance = 1.0;               ///< [m] cleaned simplemap keyframes
   double keyframe_angle = 30.0 * M_PI / 180.0;  ///< [rad]
   double png_resolution = 0.05;                 ///< [m/px]
+  std::optional<ChunkRange> chunk;              ///< map only this chunk (none: the whole input)
 };
 
 struct MapCleanSummary {
@@ -77,7 +96,8 @@ struct MapCleanSummary {
   std::size_t unreviewed_sweeps = 0;  ///< with labels: scans classified by unreviewed sweeps
   std::vector<core::FrameWarning> data_faults;  ///< the detector's (core::FrameCheck), in order
   double seconds = 0;
-  std::vector<std::string> files;  ///< written
+  std::vector<std::string> files;                 ///< written
+  std::size_t scans_before = 0, scans_after = 0;  ///< a chunk's scans read but not mapped
 };
 
 /// stage ("detect", "map", "evaluate"), scans done, total scans (0 when not known yet).
@@ -90,6 +110,23 @@ std::string summaryText(const MapCleanSummary& summary, const MapCleanOptions& o
 
 /// The files runMapClean() writes into opts.out_dir (and the KTH export folder).
 std::vector<std::string> outputFiles(const MapCleanOptions& opts);
+
+/// Writes the maps' files that `formats` asks for into `out_dir` (static / dynamic .ply,
+/// .pointsmap, .txt; map.png and static.png with legend and scale bar at `png_resolution` m/px):
+/// what runMapClean() and mergeChunks() write. Returns the files written.
+std::vector<std::string> writeMaps(const std::string& out_dir, const MapFormats& formats,
+                                   const std::vector<MapPoint>& static_points,
+                                   const std::vector<MapPoint>& dynamic_points,
+                                   double png_resolution);
+
+/// SA / DA / AA of `static_points` (MapEvaluator, `tolerance` m): against the points of `scans`
+/// labelled by `labels`, each scan placed with its pose in `poses` (in the scans' order, matched by
+/// time; scans without one are not scored), or, without `labels`, against the labelled cloud
+/// `gt_pcd`.
+MapScores scoreMap(const std::vector<MapPoint>& static_points, double tolerance, ScanSource* scans,
+                   const mrptio::GroundTruth* labels, const std::string& gt_pcd,
+                   const std::vector<io::TimedPose>& poses, double min_range,
+                   const MapCleanProgress& progress);
 
 /// Runs the job. Throws std::runtime_error (naming the file / scan) on any bad input, and when an
 /// output exists already unless opts.overwrite.

@@ -87,6 +87,10 @@ struct FrameRecord {
   std::vector<ObjectBox> objects;
 };
 
+/// The voxel vote: moves to `dynamic` every voxel of `stat` that received `vote` times fewer
+/// points than `dynamic` holds at its place (vote 0: none). Returns the voxels moved.
+std::size_t voteVoxels(VoxelMap& stat, VoxelMap& dynamic, double vote);
+
 class MapCleaner {
  public:
   explicit MapCleaner(const MapCleanParams& p);
@@ -102,6 +106,11 @@ class MapCleaner {
   /// then (every free_space_stride-th scan) its free-space views of the static map so far.
   void map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
            const Eigen::Isometry3d& sensor_pose);
+
+  /// A scan read only for its views (a chunk's scans before and after its own range,
+  /// dynobj-mapclean --from/--to): its free-space views count as map() counts them, its points
+  /// are not mapped.
+  void look(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose);
 
   /// After the last scan: applies the voxel vote. Returns the voxels moved.
   std::size_t finish();

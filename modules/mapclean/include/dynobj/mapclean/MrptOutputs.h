@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynobj/mapclean/ScanSource.h"
@@ -39,6 +40,12 @@ class CleanedSimplemapWriter {
   bool have_last_ = false;
   Eigen::Isometry3d last_ = Eigen::Isometry3d::Identity();
 };
+
+/// Concatenates the keyframes of simplemaps, each moved into the world by its transform (applied
+/// to the keyframes' poses, on the left), into `path` atomically. Returns the keyframes. Throws
+/// naming a file that cannot be read or written.
+std::size_t mergeSimplemaps(const std::vector<std::pair<std::string, Eigen::Isometry3d>>& parts,
+                            const std::string& path);
 
 /// Writes `file` (serialized CPointsMapXYZI, gzip), atomically.
 void writePointsMapFile(const std::string& file, const std::vector<MapPoint>& points);

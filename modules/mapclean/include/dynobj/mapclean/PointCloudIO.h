@@ -57,4 +57,9 @@ class PcdStreamWriter {
 /// Writes a binary little-endian PLY (vertex x y z intensity, float) atomically.
 void writePly(const std::string& path, const std::vector<MapPoint>& points);
 
+/// Reads a binary little-endian PLY whose vertices are float properties including x, y, z (and
+/// `intensity`, else 0), e.g. writePly()'s. Throws PointCloudFileError naming the file and what it
+/// holds instead (ASCII, big-endian, a non-float property, a truncated body).
+std::vector<MapPoint> readPly(const std::string& path);
+
 }  // namespace dynobj::mapclean

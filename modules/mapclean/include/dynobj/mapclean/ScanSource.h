@@ -8,6 +8,7 @@
 #include <dynobj/core/SensorModel.h>
 #include <dynobj/mrptio/FrameSource.h>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,5 +29,28 @@ struct ScanSourceOptions {
 /// "*.rawlog" (or any file MRPT reads as a rawlog) or a directory holding pcd/*.pcd. Anything
 /// else is an error naming the input and the formats expected.
 std::unique_ptr<ScanSource> openScanSource(const std::string& input, const ScanSourceOptions& opts);
+
+/// The time of a source's first scan (read without converting where the source can); the source
+/// is rewound. Throws when it holds no scan.
+std::int64_t firstScanTime(ScanSource& source);
+
+/// The scans of `source` from `begin_ns` (inclusive) to `end_ns` (exclusive): a chunk of a long
+/// recording (dynobj-mapclean --from/--to). The scans before are passed over without being
+/// converted where the source can (rawlogs); reading stops at the first scan at or after `end_ns`.
+class TimeWindowSource final : public ScanSource {
+ public:
+  TimeWindowSource(std::unique_ptr<ScanSource> source, std::int64_t begin_ns, std::int64_t end_ns);
+  bool next(Scan& s) override;
+  void rewind() override;
+  std::string describe() const override { return source_->describe(); }
+  std::string noFramesDetail() const override { return source_->noFramesDetail(); }
+  /// True once the input itself ended (no scan at or after `end_ns` was met).
+  bool reachedEnd() const { return reached_end_; }
+
+ private:
+  std::unique_ptr<ScanSource> source_;
+  std::int64_t begin_ns_, end_ns_;
+  bool reached_end_ = false, done_ = false;
+};
 
 }  // namespace dynobj::mapclean

@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -44,6 +45,21 @@ class FrameSource {
   /// After a pass that gave no frame: what the source holds instead (e.g. " with label 'X';
   /// labels seen: ..."), appended to "no LiDAR observation in <describe()>". Default: nothing.
   virtual std::string noFramesDetail() const { return {}; }
+  /// Passes over the next frame, giving only its time (a sweep's, as next() would); false at the
+  /// end. Default: next() into a scratch frame; sources that can do it without converting the
+  /// sweep (rawlogs) override it.
+  virtual bool nextTime(std::int64_t& timestamp_ns);
+  /// From the next call on, next() and nextTime() pass over the frames before `timestamp_ns`
+  /// (cheaply where a source can; the frames keep their numbers). Default: nothing is passed over
+  /// (callers drop such frames themselves: TimeWindowSource).
+  virtual void skipBefore(std::int64_t /*timestamp_ns*/) {}
 };
+
+inline bool FrameSource::nextTime(std::int64_t& timestamp_ns) {
+  Frame f;
+  if (!next(f)) return false;
+  timestamp_ns = f.frame.timestamp_ns;
+  return true;
+}
 
 }  // namespace dynobj::mrptio

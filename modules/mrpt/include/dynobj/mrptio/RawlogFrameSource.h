@@ -32,6 +32,10 @@ class RawlogFrameSource : public FrameSource {
   /// file (or past `to`). Throws RawlogError / ConversionError.
   bool next(Frame& f) override;
   void rewind() override;
+  /// Without converting the observation.
+  bool nextTime(std::int64_t& timestamp_ns) override;
+  /// Passes over earlier LiDAR observations without converting them.
+  void skipBefore(std::int64_t timestamp_ns) override { skip_before_ns_ = timestamp_ns; }
   std::string describe() const override { return "rawlog '" + path_ + "'"; }
   /// The --sensor-label asked for, and every label seen with its observation class.
   std::string noFramesDetail() const override;
@@ -50,6 +54,11 @@ class RawlogFrameSource : public FrameSource {
   std::size_t pending_pos_ = 0, frames_ = 0;
   std::optional<Eigen::Isometry3d> odometry_;
   std::map<std::string, std::string> labels_;
+  std::int64_t skip_before_ns_ = std::numeric_limits<std::int64_t>::min();
+
+  /// next() and nextTime(): the next matching LiDAR observation (not converted), or null at the
+  /// end.
+  mrpt::obs::CObservation::Ptr nextObservation();
 };
 
 }  // namespace dynobj::mrptio
