@@ -25,7 +25,7 @@
 # logs), 2 on a bad command line. Example: docs/usage.md, "Batch over many recordings".
 set -euo pipefail
 
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/batch-common.sh"
 usage() { sed -n '3,24p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 JOBS=""
 THREADS=2
@@ -48,16 +48,9 @@ MANIFEST="$1"
 shift
 [ "${1:-}" = "--" ] && shift
 EXTRA=("$@")
-[[ "$THREADS" =~ ^[1-9][0-9]*$ ]] || { echo "batch-clean: -t must be a positive number" >&2; exit 2; }
-[ -z "$JOBS" ] && JOBS=$(( $(nproc) / THREADS > 0 ? $(nproc) / THREADS : 1 ))
-[[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || { echo "batch-clean: -j must be a positive number" >&2; exit 2; }
+batch_check_jobs batch-clean
 [ -f "$MANIFEST" ] || { echo "batch-clean: no manifest '$MANIFEST'" >&2; exit 2; }
-command -v parallel >/dev/null ||
-  { echo "batch-clean: GNU parallel is not installed (Debian package 'parallel')" >&2; exit 1; }
-if [ -z "$BIN" ]; then
-  BIN="$(command -v rawlog-dynobj || true)"
-  [ -n "$BIN" ] || BIN="$ROOT/build/apps/rawlog-dynobj"
-fi
+batch_find_tool rawlog-dynobj
 [ ${#SSH[@]} -gt 0 ] || [ -x "$BIN" ] || { echo "batch-clean: no rawlog-dynobj at '$BIN' (-b)" >&2; exit 1; }
 
 mkdir -p "$OUT/logs"

@@ -27,7 +27,7 @@
 # logs), 2 on a bad command line.
 set -euo pipefail
 
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/batch-common.sh"
 usage() { sed -n '3,27p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 JOBS="" THREADS=1 OUT="" LENGTH=600 OVERLAP=30
 SSH=()
@@ -50,16 +50,9 @@ INPUT="$1"
 shift
 [ "${1:-}" = "--" ] && shift
 EXTRA=("$@")
-[[ "$THREADS" =~ ^[1-9][0-9]*$ ]] || { echo "chunked-clean: -t must be a positive number" >&2; exit 2; }
-[ -z "$JOBS" ] && JOBS=$(( $(nproc) / THREADS > 0 ? $(nproc) / THREADS : 1 ))
-[[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || { echo "chunked-clean: -j must be a positive number" >&2; exit 2; }
+batch_check_jobs chunked-clean
 [ -e "$INPUT" ] || { echo "chunked-clean: no input '$INPUT'" >&2; exit 2; }
-command -v parallel >/dev/null ||
-  { echo "chunked-clean: GNU parallel is not installed (Debian package 'parallel')" >&2; exit 1; }
-if [ -z "$BIN" ]; then
-  BIN="$(command -v dynobj-mapclean || true)"
-  [ -n "$BIN" ] || BIN="$ROOT/build/apps/dynobj-mapclean"
-fi
+batch_find_tool dynobj-mapclean
 [ -x "$BIN" ] || { echo "chunked-clean: no dynobj-mapclean at '$BIN' (-b)" >&2; exit 1; }
 INPUT="$(cd "$(dirname "$INPUT")" && pwd)/$(basename "$INPUT")"
 MERGE_FORMATS=()
