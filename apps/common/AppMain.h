@@ -8,6 +8,8 @@
 #include <dynobj/io/CrashGuard.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -123,6 +125,38 @@ inline std::string shareDir() {
   return "share/dynobj";
 #endif
 }
+
+/// The time left of a long stage, from the share of its work done: the rate since the first
+/// share given (so a stage that starts late, e.g. after a skipped part of the input, is not
+/// misjudged). update() returns "" until the estimate means something (5 s and 1 % in), then
+/// e.g. "~4 min left".
+class TimeLeft {
+ public:
+  std::string update(double fraction) {
+    const auto now = std::chrono::steady_clock::now();
+    if (fraction < 0) return "";
+    if (first_ < 0) {
+      first_ = fraction;
+      start_ = now;
+      return "";
+    }
+    const double s = std::chrono::duration<double>(now - start_).count();
+    if (s < 5 || fraction - first_ < 0.01 || fraction >= 1) return "";
+    const double left = s * (1.0 - fraction) / (fraction - first_);
+    char b[48];
+    if (left < 90)
+      std::snprintf(b, sizeof(b), "~%.0f s left", left);
+    else if (left < 5400)
+      std::snprintf(b, sizeof(b), "~%.0f min left", left / 60);
+    else
+      std::snprintf(b, sizeof(b), "~%.1f h left", left / 3600);
+    return b;
+  }
+
+ private:
+  double first_ = -1;
+  std::chrono::steady_clock::time_point start_;
+};
 
 /// Runs `body`, printing "<app>: error: <message>" and returning 1 on an exception. The crash
 /// guard is installed first: a crash or a kill removes the `.partial` outputs.

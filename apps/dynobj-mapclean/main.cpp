@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -153,8 +154,11 @@ int run(int argc, char** argv) {
 
   const bool tty = isatty(STDERR_FILENO) && !quiet.isSet();
   std::string last_stage;
-  const auto progress = [&](const char* stage, std::size_t done, std::size_t total) {
+  std::map<std::string, dynobj::apps::TimeLeft> left;  // per stage
+  const auto progress = [&](const char* stage, std::size_t done, std::size_t total,
+                            double fraction) {
     if (quiet.isSet()) return;
+    const std::string eta = left[stage].update(fraction);
     const bool step = total ? (done % std::max<std::size_t>(1, total / 10) == 0 || done == total)
                             : done % 50 == 0;
     if (!tty && !step) return;
@@ -163,7 +167,9 @@ int run(int argc, char** argv) {
     std::cerr << (tty ? "\r" : "") << "[dynobj-mapclean] " << stage << ": "
               << (std::string(stage) == "merge" ? "chunk " : "scan ") << done;
     if (total) std::cerr << "/" << total;
-    std::cerr << (tty ? "" : "\n") << std::flush;
+    if (fraction >= 0) std::cerr << ", " << static_cast<int>(100 * fraction) << " %";
+    if (!eta.empty()) std::cerr << ", " << eta;
+    std::cerr << (tty ? "   " : "\n") << std::flush;
   };
 
   if (merge.isSet()) {

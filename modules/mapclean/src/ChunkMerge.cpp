@@ -249,7 +249,9 @@ MergeSummary mergeChunks(const MergeOptions& o, const MapCleanProgress& progress
         const Eigen::Vector3f w = R * Eigen::Vector3f(p.x, p.y, p.z) + t;
         map->insert({w.x(), w.y(), w.z(), p.intensity});
       }
-    if (progress) progress("merge", k + 1, chunks.size());
+    if (progress)
+      progress("merge", k + 1, chunks.size(),
+               static_cast<double>(k + 1) / static_cast<double>(chunks.size()));
   }
   sum.voted = voteVoxels(st, dy, first.dynamic_vote);
 

@@ -7,6 +7,7 @@
 #include <dynobj/io/PoseFile.h>
 #include <dynobj/mrptio/SequenceRunner.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -159,16 +160,16 @@ MapScores scoreMap(const std::vector<MapPoint>& st, double tolerance, ScanSource
     forEachWorldPoint(scan.frame, poses[k].pose, min_range, [&](int r, int c, const MapPoint& p) {
       eval.add(p.x, p.y, p.z, gt(r, c) != 0);
     });
-    if (progress) progress("evaluate", ++k, poses.size());
+    ++k;
+    if (progress)
+      progress("evaluate", k, poses.size(),
+               static_cast<double>(k) / static_cast<double>(poses.size()));
   }
   return eval.scores();
 }
 
 MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto report = [&](const char* stage, std::size_t done, std::size_t total) {
-    if (progress) progress(stage, done, total);
-  };
   if (!o.overwrite)
     for (const std::string& f : outputFiles(o))
       if (fs::exists(f))
@@ -184,15 +185,15 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     labels.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
   }
   // A chunk: only its scans are mapped; those of the overlap before and after are read too.
+  constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
   std::int64_t first_scan = 0, own_begin = std::numeric_limits<std::int64_t>::min(),
-               own_end = std::numeric_limits<std::int64_t>::max();
+               own_end = kNever;
   auto source = openScanSource(o.input, o.scan_options);
   const auto window = [&](std::unique_ptr<ScanSource> scans) -> std::unique_ptr<ScanSource> {
     if (!o.chunk) return scans;
     const auto overlap = static_cast<std::int64_t>(std::llround(o.chunk->overlap * 1e9));
-    return std::make_unique<TimeWindowSource>(
-        std::move(scans), own_begin - overlap,
-        own_end == std::numeric_limits<std::int64_t>::max() ? own_end : own_end + overlap);
+    return std::make_unique<TimeWindowSource>(std::move(scans), own_begin - overlap,
+                                              own_end == kNever ? own_end : own_end + overlap);
   };
   if (o.chunk) {
     o.chunk->validate();
@@ -240,6 +241,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     overlap_tum = std::make_unique<io::TumWriter>(
         out + "overlap.tum", "sensor pose of the scans a dynobj-mapclean chunk read, not mapped");
   std::int64_t last_mapped = 0;
+  std::size_t scans_read = 0;
   const auto own = [&](std::int64_t t) { return t >= own_begin && t < own_end; };
 
   const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
@@ -260,7 +262,20 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
     }
     tum.write(rec.timestamp_ns, rec.sensor_pose);
     if (!o.ground_truth.empty()) mapped_poses.push_back({rec.timestamp_ns, rec.sensor_pose});
-    report("map", ++sum.scans, 0);
+    ++sum.scans;
+    if (!progress) return;
+    // The share mapped: of the input's bytes, as many as read so far times the scans mapped of
+    // those read (the mapping trails the reading); a chunk with an end: of its time span.
+    const double read = source->progress();  // negative: not known
+    double done = read < 0 ? -1.0
+                           : read * static_cast<double>(sum.scans + sum.scans_before) /
+                                 static_cast<double>(std::max<std::size_t>(1, scans_read));
+    if (o.chunk && own_end != kNever) {
+      const double read_begin = static_cast<double>(own_begin) - 1e9 * o.chunk->overlap;
+      const double read_end = static_cast<double>(own_end) + 1e9 * o.chunk->overlap;
+      done = (static_cast<double>(rec.timestamp_ns) - read_begin) / (read_end - read_begin);
+    }
+    progress("map", sum.scans, 0, done < 0 ? done : std::min(done, 1.0));
   };
 
   // One pass over the input. With back-fill, a scan is mapped backfill_window seconds after its
@@ -281,6 +296,7 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
   GroundLeveler leveler;
   runner.run([&](const mrptio::FrameResult& fr) {
     const Scan& s = fr.frame;
+    scans_read++;
     Eigen::Isometry3d pose =
         poses->pose(s, fr.detection ? fr.detection->ego_motion : core::EgoMotion{});
     if (o.clean.level_poses)

@@ -25,6 +25,10 @@ class PcdFolderScans final : public ScanSource {
   }
   void rewind() override { pos_ = 0; }
   std::string describe() const override { return "PCD folder '" + dir_ + "'"; }
+  double progress() const override {
+    return static_cast<double>(pos_) /
+           static_cast<double>(std::max<std::size_t>(1, folder_.size()));
+  }
 
   bool next(Scan& s) override {
     if (pos_ >= folder_.size()) return false;

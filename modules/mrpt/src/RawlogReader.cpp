@@ -58,12 +58,19 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
   std::string err;
   if (!file->open(path, err))
     throw RawlogError("cannot open rawlog '" + path + "'" + (err.empty() ? "" : ": " + err));
+  file_ = file.get();
   in_ = std::make_unique<Input>(std::move(file));
   io::setCrashInput(path_);
 }
 
 RawlogReader::RawlogReader(std::unique_ptr<mrpt::io::CStream> stream, const std::string& name)
     : path_(name), in_(std::make_unique<Input>(std::move(stream))) {}
+
+double RawlogReader::fileFraction() const {
+  if (!file_ || file_->getTotalBytesCount() == 0) return -1;
+  return static_cast<double>(file_->fileBytesRead()) /
+         static_cast<double>(file_->getTotalBytesCount());
+}
 
 RawlogReader::~RawlogReader() = default;
 

@@ -245,6 +245,29 @@ TEST(RawlogReader, ReadsFromAMemoryStream) {
   EXPECT_EQ(n, 3u);
 }
 
+TEST(RawlogReader, FileFractionGrowsToOneAndIsUnknownForAStream) {
+  for (bool gz : {false, true}) {
+    const auto path = writeComments(2000, gz);  // several read buffers, gzip or not
+    RawlogReader reader(path);
+    EXPECT_EQ(reader.fileFraction(), 0.0);
+    RawlogEntry e;
+    double last = 0;
+    bool inside = false;  // some entry read with part of the file left
+    while (reader.next(e)) {
+      const double f = reader.fileFraction();
+      EXPECT_GE(f, last);
+      inside = inside || (f > 0 && f < 1);
+      last = f;
+    }
+    EXPECT_TRUE(inside) << (gz ? "gzip" : "plain");
+    EXPECT_DOUBLE_EQ(reader.fileFraction(), 1.0);
+  }
+  const std::string bytes = readAll(writeComments(3, false));
+  auto mem = std::make_unique<mrpt::io::CMemoryStream>();
+  mem->assignMemoryNotOwn(bytes.data(), bytes.size());
+  EXPECT_LT(RawlogReader(std::move(mem), "memory").fileFraction(), 0);
+}
+
 TEST(RawlogReader, ClassNamesResolveAsInMrpt) {
   // Found by fuzzing: MRPT reads "nullptroses::CPose3D" as a CPose3D (it retries a name without
   // its namespace), so the check must walk it as one and still see the damaged size after it.

@@ -100,9 +100,11 @@ struct MapCleanSummary {
   std::size_t scans_before = 0, scans_after = 0;  ///< a chunk's scans read but not mapped
 };
 
-/// stage ("detect", "map", "evaluate"), scans done, total scans (0 when not known yet).
+/// stage ("map", "evaluate", "merge"), scans (chunks) done, their total (0 when not known yet),
+/// and the share of the stage's work done (0-1; negative when not known): of the input read
+/// (a chunk: of its time range and overlap), for estimates of the time left.
 using MapCleanProgress =
-    std::function<void(const char* stage, std::size_t done, std::size_t total)>;
+    std::function<void(const char* stage, std::size_t done, std::size_t total, double fraction)>;
 
 /// What dynobj-mapclean prints: scans, pose source, the data faults (one line each, and their
 /// counts), map sizes, simplemap, export, metrics, time.

@@ -44,6 +44,7 @@ class TimeWindowSource final : public ScanSource {
   void rewind() override;
   std::string describe() const override { return source_->describe(); }
   std::string noFramesDetail() const override { return source_->noFramesDetail(); }
+  double progress() const override { return source_->progress(); }
   /// True once the input itself ended (no scan at or after `end_ns` was met).
   bool reachedEnd() const { return reached_end_; }
 

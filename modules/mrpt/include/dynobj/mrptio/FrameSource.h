@@ -53,6 +53,9 @@ class FrameSource {
   /// (cheaply where a source can; the frames keep their numbers). Default: nothing is passed over
   /// (callers drop such frames themselves: TimeWindowSource).
   virtual void skipBefore(std::int64_t /*timestamp_ns*/) {}
+  /// The share of the input read so far (0-1, for progress and time estimates); negative when
+  /// the source cannot tell.
+  virtual double progress() const { return -1; }
 };
 
 inline bool FrameSource::nextTime(std::int64_t& timestamp_ns) {

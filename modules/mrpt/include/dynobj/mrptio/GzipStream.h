@@ -61,6 +61,9 @@ class GzipInputStream : public mrpt::io::CStream {
   /// Decompressed bytes read so far.
   uint64_t getPosition() const override;
   bool isGzip() const { return gzip_; }
+  /// Bytes of the file (compressed, for gzip) decompressed so far: with getTotalBytesCount(), how
+  /// much of the file has been read.
+  std::uint64_t fileBytesRead() const { return consumed_ - (in_end_ - in_start_); }
 
  private:
   bool fill();  // more compressed input; false at the end of the file

@@ -36,6 +36,8 @@ class RawlogFrameSource : public FrameSource {
   bool nextTime(std::int64_t& timestamp_ns) override;
   /// Passes over earlier LiDAR observations without converting them.
   void skipBefore(std::int64_t timestamp_ns) override { skip_before_ns_ = timestamp_ns; }
+  /// The share of the file's bytes read.
+  double progress() const override { return reader_->fileFraction(); }
   std::string describe() const override { return "rawlog '" + path_ + "'"; }
   /// The --sensor-label asked for, and every label seen with its observation class.
   std::string noFramesDetail() const override;

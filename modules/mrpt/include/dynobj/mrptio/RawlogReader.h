@@ -20,6 +20,8 @@
 
 namespace dynobj::mrptio {
 
+class GzipInputStream;
+
 /// A rawlog that cannot be opened or read to its end. what() names the file and the entry.
 class RawlogError : public std::runtime_error {
  public:
@@ -57,6 +59,9 @@ class RawlogReader {
   std::size_t entriesRead() const { return entries_; }
   /// Uncompressed bytes consumed so far.
   std::uint64_t position() const;
+  /// The share of the file read so far (0-1; its bytes on disk, compressed or not); negative for
+  /// a reader of a stream.
+  double fileFraction() const;
 
  private:
   mrpt::serialization::CSerializable::Ptr readObject(const char* what);
@@ -64,6 +69,7 @@ class RawlogReader {
   struct Input;
   std::string path_;
   std::unique_ptr<Input> in_;
+  const GzipInputStream* file_ = nullptr;  ///< the file (opened by path), in in_
   std::size_t entries_ = 0;
 };
 
