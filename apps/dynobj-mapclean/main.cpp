@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-mapclean: builds a static map without ghost trails (and the moving objects' map) from a
 // rawlog or a KTH DynamicMap folder; optional benchmark export and map-level metrics. A long
-// recording in chunks: --plan-chunks, --from/--to (one process a chunk), --merge.
+// recording in chunks: --plan-chunks, --chunk-from/--chunk-to (one process a chunk), --merge.
 #include <dynobj/mapclean/ChunkMerge.h>
 #include <dynobj/mapclean/MapCleanJob.h>
 #include <unistd.h>
@@ -20,7 +20,7 @@ namespace {
 
 namespace mc = dynobj::mapclean;
 
-/// --to's value: seconds, or "end".
+/// --chunk-to's value: seconds, or "end".
 double parseTo(const std::string& v) {
   if (v == "end") return std::numeric_limits<double>::infinity();
   std::size_t used = 0;
@@ -31,7 +31,7 @@ double parseTo(const std::string& v) {
     used = 0;
   }
   if (used != v.size() || !std::isfinite(s))
-    throw std::invalid_argument("--to '" + v + "': seconds since the first scan, or end");
+    throw std::invalid_argument("--chunk-to '" + v + "': seconds since the first scan, or end");
   return s;
 }
 
@@ -90,14 +90,15 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<double> kf("", "keyframe-distance",
                              "Cleaned simplemap: keyframe every this many m (0 = every scan)",
                              false, 1.0, "m", cmd);
-  TCLAP::ValueArg<double> from("", "from",
-                               "A chunk of a long recording: map the scans from this time [s] "
-                               "since the first scan (with --to; merge the chunks with --merge)",
-                               false, 0, "s", cmd);
-  TCLAP::ValueArg<std::string> to("", "to", "... up to this time [s] (excluded), or end", false,
-                                  "end", "s|end", cmd);
+  TCLAP::ValueArg<double> from(
+      "", "chunk-from",
+      "A chunk of a long recording: map the scans from this time [s] "
+      "since the first scan (with --chunk-to; merge the chunks with --merge)",
+      false, 0, "s", cmd);
+  TCLAP::ValueArg<std::string> to("", "chunk-to", "... up to this time [s] (excluded), or end",
+                                  false, "end", "s|end", cmd);
   TCLAP::ValueArg<double> overlap(
-      "", "overlap",
+      "", "chunk-overlap",
       "A chunk also reads this many seconds before and after its range (not mapped: detector "
       "warm-up, free-space views, back-fill, the poses that align the chunks)",
       false, 30, "s", cmd);
@@ -123,7 +124,7 @@ int run(int argc, char** argv) {
     if (chunked || plan.isSet())
       return usage(
           "--merge takes the chunk folders and -o (and --gt, with -i for a label file), "
-          "not --from, --to or --plan-chunks");
+          "not --chunk-from, --chunk-to or --plan-chunks");
   } else {
     if (!chunk_dirs.getValue().empty())
       return usage("unexpected argument '" + chunk_dirs.getValue().front() +
@@ -140,7 +141,7 @@ int run(int argc, char** argv) {
     }
   if (plan.isSet()) {
     if (out.isSet() || chunked)
-      return usage("--plan-chunks prints the chunks of -i: no -o, --from or --to");
+      return usage("--plan-chunks prints the chunks of -i: no -o, --chunk-from or --chunk-to");
     mc::ScanSourceOptions scans;
     scans.sensor = sensor.model();
     scans.sensor_label = sensor.label();

@@ -3,7 +3,7 @@
 # Cleans one long recording with dynobj-mapclean in chunks run by GNU parallel, on this machine or
 # over ssh hosts, and merges them into one map (docs/mapclean.md, "Long recordings in chunks"):
 #   1. dynobj-mapclean -i <input> --plan-chunks <length>      -> <out-dir>/chunks.txt
-#   2. one dynobj-mapclean --from/--to per chunk              -> <out-dir>/chunks/<n>/
+#   2. one dynobj-mapclean --chunk-from/--chunk-to per chunk  -> <out-dir>/chunks/<n>/
 #   3. dynobj-mapclean --merge <out-dir>/chunks/*             -> <out-dir>/map/
 # A chunk whose chunk.ini exists is complete (it is written last) and is not run again: a failed or
 # interrupted run is resumed by running the same command again.
@@ -14,7 +14,7 @@
 #   input      a rawlog (or KTH folder) that every host sees at the same path
 #   -l S       chunk length in seconds (default 600); each chunk also reads -O seconds before and
 #              after it, so chunks much longer than the overlap waste little
-#   -O S       dynobj-mapclean --overlap (default 30: the back-fill and free-space windows)
+#   -O S       dynobj-mapclean --chunk-overlap (default 30: the back-fill and free-space windows)
 #   -j N       chunks at once per host (default: the number of cores / threads per job, at least 1)
 #   -t N       dynobj-mapclean --threads of each chunk (default 1)
 #   -S login   run chunks over ssh (GNU parallel --sshlogin, e.g. "8/user@host", ":" = this
@@ -70,7 +70,7 @@ for a in "${EXTRA[@]}"; do QEXTRA+=" $(printf '%q' "$a")"; done
 Q() { printf '%q' "$1"; }
 # One chunk: {#} its number, {1} {2} its range. Skipped when its chunk.ini exists (complete).
 JOB="d=$(Q "$OUT")/chunks/{#}; [ -f \$d/chunk.ini ] && echo skipped > $(Q "$OUT")/logs/chunk-{#}.log && exit 0;"
-JOB+=" $(Q "$BIN") -q -w -i $(Q "$INPUT") -o \$d --from {1} --to {2} --overlap $(Q "$OVERLAP")"
+JOB+=" $(Q "$BIN") -q -w -i $(Q "$INPUT") -o \$d --chunk-from {1} --chunk-to {2} --chunk-overlap $(Q "$OVERLAP")"
 JOB+=" --threads $THREADS$QEXTRA > $(Q "$OUT")/logs/chunk-{#}.log 2>&1"
 echo "chunked-clean: $N chunks of about $LENGTH s (+ $OVERLAP s overlap) of $INPUT -> $OUT ($JOBS at once per host)"
 rc=0

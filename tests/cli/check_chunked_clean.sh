@@ -27,7 +27,7 @@ for f in static.ply dynamic.ply poses.tum; do [ -f "$W/par/map/$f" ] || fail "no
 "$BIN" -i "$SAMPLE" --plan-chunks 2 > "$W/chunks.txt"
 for task in 1 2; do
   SLURM_ARRAY_TASK_ID=$task DYNOBJ_MAPCLEAN="$BIN" "$SRC/scripts/batch/chunked-clean.sbatch" \
-    "$SAMPLE" "$W/chunks.txt" "$W/slurm" --overlap 1 --formats ply > "$W/task$task.txt" 2>&1 ||
+    "$SAMPLE" "$W/chunks.txt" "$W/slurm" --chunk-overlap 1 --formats ply > "$W/task$task.txt" 2>&1 ||
     { cat "$W/task$task.txt"; fail "array task $task"; }
 done
 "$BIN" -q -w -o "$W/slurm/map" --merge "$W/slurm/chunks/"* --formats ply > /dev/null

@@ -55,7 +55,8 @@ struct Chunk {
 void ChunkInfo::write(const std::string& path) const {
   io::AtomicFile f(path);
   auto& o = f.stream();
-  o << "# A chunk of dynobj-mapclean --from/--to: what dynobj-mapclean --merge reads\n[chunk]\n"
+  o << "# A chunk of dynobj-mapclean --chunk-from/--chunk-to: what dynobj-mapclean --merge "
+       "reads\n[chunk]\n"
     << "input = " << input << "\nfirst_scan_ns = " << first_scan_ns
     << "\nfrom = " << seconds(range.from) << "\nto = " << seconds(range.to)
     << "\noverlap = " << seconds(range.overlap) << "\nscans = " << scans
@@ -153,16 +154,16 @@ MergeSummary mergeChunks(const MergeOptions& o, const MapCleanProgress& progress
     if (!fs::is_regular_file(ini))
       throw std::runtime_error("'" + dir +
                                "' is not a dynobj-mapclean chunk (no chunk.ini: chunks are made "
-                               "with --from/--to)");
+                               "with --chunk-from/--chunk-to)");
     chunks.push_back({dir, ChunkInfo::read(ini)});
   }
   std::sort(chunks.begin(), chunks.end(),
             [](const Chunk& a, const Chunk& b) { return a.info.range.from < b.info.range.from; });
   const ChunkInfo& first = chunks.front().info;
   if (first.range.from > 1e-9)
-    throw std::runtime_error("the first chunk, '" + chunks.front().dir + "', starts at " +
-                             seconds(first.range.from) +
-                             " s: the scans before are in no chunk (the first starts at --from 0)");
+    throw std::runtime_error(
+        "the first chunk, '" + chunks.front().dir + "', starts at " + seconds(first.range.from) +
+        " s: the scans before are in no chunk (the first starts at --chunk-from 0)");
   for (std::size_t k = 0; k < chunks.size(); k++) {
     const Chunk& c = chunks[k];
     const auto differ = [&](const std::string& what) {
@@ -188,7 +189,7 @@ MergeSummary mergeChunks(const MergeOptions& o, const MapCleanProgress& progress
     throw std::runtime_error("the last chunk, '" + chunks.back().dir + "', ends at " +
                              seconds(last.range.to) +
                              " s, before the input: the scans after it are in no chunk (the last "
-                             "chunk goes --to end)");
+                             "chunk goes --chunk-to end)");
   for (const Chunk& c : chunks) {
     for (const char* name : {"static.ply", "dynamic.ply"})
       if (!fs::is_regular_file(c.dir + "/" + name))

@@ -112,11 +112,12 @@ std::string ChunkRange::describe() const {
 
 void ChunkRange::validate() const {
   if (!(from >= 0) || !std::isfinite(from))
-    throw std::invalid_argument("--from must be a time >= 0 [s] since the first scan");
-  if (!(to > from)) throw std::invalid_argument("--to must be later than --from: " + describe());
+    throw std::invalid_argument("--chunk-from must be a time >= 0 [s] since the first scan");
+  if (!(to > from))
+    throw std::invalid_argument("--chunk-to must be later than --chunk-from: " + describe());
   if (!(overlap > 0) || !std::isfinite(overlap))
     throw std::invalid_argument(
-        "--overlap must be > 0 s: the chunks are aligned by the scans they share");
+        "--chunk-overlap must be > 0 s: the chunks are aligned by the scans they share");
 }
 
 std::vector<std::string> writeMaps(const std::string& out_dir, const MapFormats& f,

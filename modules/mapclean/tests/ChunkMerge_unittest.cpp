@@ -36,7 +36,7 @@ struct TimedPoses {
   std::vector<std::pair<double, Eigen::Isometry3d>> poses;  ///< [s] since the first scan
 };
 
-/// A chunk folder as dynobj-mapclean --from/--to writes it (maps in ply only).
+/// A chunk folder as dynobj-mapclean --chunk-from/--chunk-to writes it (maps in ply only).
 std::string makeChunk(const std::string& name, double from, double to,
                       const std::vector<mc::MapPoint>& st, const std::vector<mc::MapPoint>& dy,
                       const TimedPoses& own, const TimedPoses& overlap, double voxel = 0.0) {

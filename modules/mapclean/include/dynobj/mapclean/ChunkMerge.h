@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A long recording cleaned in chunks (dynobj-mapclean --from/--to, one process each, e.g. under
-// GNU parallel or a Slurm array) and merged into one map (dynobj-mapclean --merge):
+// A long recording cleaned in chunks (dynobj-mapclean --chunk-from/--chunk-to, one process each,
+// e.g. under GNU parallel or a Slurm array) and merged into one map (dynobj-mapclean --merge):
 //  - planChunks(): the chunks' time ranges, cut at scans, each about `length` seconds;
 //  - each chunk's folder holds its maps, poses.tum (its own scans), overlap.tum (the scans it read
 //    before and after them) and chunk.ini (ChunkInfo);

@@ -45,16 +45,17 @@ struct MapFormats {
   std::string toString() const;  ///< "ply,png,simplemap"
 };
 
-/// A chunk of a long recording (dynobj-mapclean --from/--to; docs/mapclean.md "Long recordings in
-/// chunks"): only the scans from `from` to `to` seconds after the input's first scan are mapped;
-/// the `overlap` seconds before and after are read too, for the detector's warm-up, the free-space
-/// views and the back-fill, and their poses let mergeChunks() align the chunks. The output folder
-/// also gets chunk.ini (ChunkInfo) and overlap.tum (the poses of the scans read but not mapped).
+/// A chunk of a long recording (dynobj-mapclean --chunk-from/--chunk-to; docs/mapclean.md "Long
+/// recordings in chunks"): only the scans from `from` to `to` seconds after the input's first scan
+/// are mapped; the `overlap` seconds before and after are read too, for the detector's warm-up, the
+/// free-space views and the back-fill, and their poses let mergeChunks() align the chunks. The
+/// output folder also gets chunk.ini (ChunkInfo) and overlap.tum (the poses of the scans read but
+/// not mapped).
 struct ChunkRange {
   double from = 0.0;                                    ///< [s] since the input's first scan
   double to = std::numeric_limits<double>::infinity();  ///< [s] (excluded); inf = the end
   double overlap = 30.0;                                ///< [s] > 0
-  /// Throws std::invalid_argument naming --from, --to or --overlap.
+  /// Throws std::invalid_argument naming --chunk-from, --chunk-to or --chunk-overlap.
   void validate() const;
   /// "60 s to 120 s", "120 s to the end".
   std::string describe() const;

@@ -108,8 +108,8 @@ class MapCleaner {
            const Eigen::Isometry3d& sensor_pose);
 
   /// A scan read only for its views (a chunk's scans before and after its own range,
-  /// dynobj-mapclean --from/--to): its free-space views count as map() counts them, its points
-  /// are not mapped.
+  /// dynobj-mapclean --chunk-from/--chunk-to): its free-space views count as map() counts them, its
+  /// points are not mapped.
   void look(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose);
 
   /// After the last scan: applies the voxel vote. Returns the voxels moved.

@@ -35,8 +35,9 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& input, const ScanS
 std::int64_t firstScanTime(ScanSource& source);
 
 /// The scans of `source` from `begin_ns` (inclusive) to `end_ns` (exclusive): a chunk of a long
-/// recording (dynobj-mapclean --from/--to). The scans before are passed over without being
-/// converted where the source can (rawlogs); reading stops at the first scan at or after `end_ns`.
+/// recording (dynobj-mapclean --chunk-from/--chunk-to). The scans before are passed over without
+/// being converted where the source can (rawlogs); reading stops at the first scan at or after
+/// `end_ns`.
 class TimeWindowSource final : public ScanSource {
  public:
   TimeWindowSource(std::unique_ptr<ScanSource> source, std::int64_t begin_ns, std::int64_t end_ns);
