@@ -37,21 +37,17 @@ void ClusteringParams::visit(ParamVisitor& v) {
   v.value("weak_min_points", weak_min_points);
   v.value("max_points", max_points);
   v.value("max_area", max_area);
-  v.value("max_length", max_length);
   v.value("voxel", voxel);
   v.value("search", search);
-  v.value("max_window", max_window);
 }
 
 void ClusteringParams::validate() const {
   requirePositive("horizontal_distance", horizontal_distance);
   requirePositive("vertical_distance", vertical_distance);
-  requireOneOf("search", search, {"grid", "kdtree", "image"});
+  requireOneOf("search", search, {"grid", "kdtree"});
   requireInRange("min_points", min_points, 1, 1000000);
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("weak_min_points", weak_min_points, 0, 1000000);  // >= min_points: none
-  requireInRange("max_window", max_window, 1, 1000);
-  requireInRange("max_length", max_length, 0, 1e6);
   requireInRange("max_area", max_area, 0, 1e6);
   requireInRange("voxel", voxel, 0, 0.5 * std::min(horizontal_distance, vertical_distance));
 }
@@ -181,11 +177,8 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   if (pixels_.empty()) return;
   std::vector<int>& label = label_;
   voxels_.clear();
-  if (p_.search == "image")
-    clusterImage(f, label);
-  else
-    clusterPoints(f, label);
-  const bool by_area = p_.max_area > 0 && p_.voxel > 0 && !voxels_.empty();
+  clusterPoints(f, label);
+  const bool by_area = p_.max_area > 0 && p_.voxel > 0;
   const auto max_voxels = static_cast<int>(p_.max_area / (p_.voxel * p_.voxel));
   // Gather the components (labels are union-find roots) and keep those of a plausible size.
   count_.assign(pixels_.size(), 0);
@@ -208,45 +201,6 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
   for (Cluster& c : out) computeClusterShape(f, c);
   if (weak)  // the centroid only: the association needs no more
     for (Cluster& c : *weak) c.centroid = centroidOf(f, c.pixels);
-  if (p_.max_length > 0)
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [&](const Cluster& c) { return c.length > p_.max_length; }),
-              out.end());
-}
-
-void Clusterer::clusterImage(const LidarFrame& f, std::vector<int>& label) {
-  const int H = f.rows(), W = f.cols();
-  index_.create(H, W);
-  index_.setTo(-1);
-  for (std::size_t i = 0; i < pixels_.size(); i++)
-    index_(pixels_[i] / W, pixels_[i] % W) = static_cast<int>(i);
-  std::vector<int>& parent = parent_;
-  parent.resize(pixels_.size());
-  for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
-  const double gap_v = f.sensor.fovSpan() / H, gap_h = 2 * M_PI / W;
-  const double exy = p_.horizontal_distance, ez = p_.vertical_distance;
-  for (std::size_t i = 0; i < pixels_.size(); i++) {
-    const int r = pixels_[i] / W, c = pixels_[i] % W;
-    const cv::Vec3f& p = f.xyz(r, c);
-    const double rng = std::max(0.1f, f.range(r, c));
-    // Pixels that can hold a point within (eps_xy, eps_z) of this one, looking forward only
-    // (each pair is examined once): this row to the right, and the rows below.
-    const int wc = std::clamp(static_cast<int>(std::ceil(exy / (rng * gap_h))), 1, p_.max_window);
-    const int wr = std::clamp(static_cast<int>(std::ceil(std::max(exy, ez) / (rng * gap_v))), 1, 4);
-    for (int dr = 0; dr <= wr && r + dr < H; dr++) {
-      for (int dc = (dr == 0 ? 1 : -wc); dc <= wc; dc++) {
-        const int j = index_(r + dr, (c + dc + W) % W);
-        if (j < 0) continue;
-        const cv::Vec3f& q = f.xyz(r + dr, (c + dc + W) % W);
-        if (std::hypot(q[0] - p[0], q[1] - p[1]) > exy || std::abs(q[2] - p[2]) > ez)
-          continue;  // Eq. (6)-(7)
-        const int a = root(parent, static_cast<int>(i)), b = root(parent, j);
-        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-      }
-    }
-  }
-  label.resize(pixels_.size());
-  for (std::size_t i = 0; i < pixels_.size(); i++) label[i] = root(parent, static_cast<int>(i));
 }
 
 void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {

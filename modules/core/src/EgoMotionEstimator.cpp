@@ -99,7 +99,6 @@ void EgoMotionParams::visit(ParamVisitor& v) {
   v.value("scale_factor", scale_factor);
   v.value("levels", levels);
   v.value("fast_threshold", fast_threshold);
-  v.value("upsample", upsample);
   v.value("ratio", ratio);
   v.value("match_window", match_window);
   v.value("border", border);
@@ -120,7 +119,6 @@ void EgoMotionParams::validate() const {
   requireInRange("scale_factor", scale_factor, 1.01, 4);
   requireInRange("levels", levels, 1, 8);
   requireInRange("fast_threshold", fast_threshold, 1, 255);
-  requireInRange("upsample", upsample, 1, 4);
   requireInRange("ratio", ratio, 0.1, 1.0);
   requireInRange("match_window", match_window, 0, 100000);
   requireInRange("border", border, 0, 20);
@@ -154,7 +152,7 @@ void EgoMotionEstimator::reset() {
 
 void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& intensity,
                                 const cv::Mat_<std::uint8_t>& exclude, Features& out) {
-  const int H = f.rows(), W = f.cols(), up = p_.upsample;
+  const int H = f.rows(), W = f.cols();
   intensity.convertTo(img8_, CV_8U);
   // Keypoints only on returns at least `border` px away from any no-return, and off `exclude`.
   if (p_.border > 0)
@@ -163,21 +161,14 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
   else
     f.valid.copyTo(mask_);
   if (!exclude.empty()) mask_.setTo(0, exclude);
-  if (up > 1) {
-    cv::resize(img8_, up_, cv::Size(W, H * up), 0, 0, cv::INTER_LINEAR);
-    cv::resize(mask_, mask_up_, cv::Size(W, H * up), 0, 0, cv::INTER_NEAREST);
-  } else {
-    up_ = img8_;
-    mask_up_ = mask_;
-  }
   // Room for ORB's margin, patch and border: wrap left/right (360 deg scan), reflect top/bottom.
   cv::Mat tmp;
-  cv::copyMakeBorder(up_, tmp, kPad, kPad, 0, 0, cv::BORDER_REFLECT_101);
+  cv::copyMakeBorder(img8_, tmp, kPad, kPad, 0, 0, cv::BORDER_REFLECT_101);
   cv::copyMakeBorder(tmp, padded_, 0, 0, kPad, kPad, cv::BORDER_WRAP);
-  cv::copyMakeBorder(mask_up_, mask_pad_, kPad, kPad, kPad, kPad, cv::BORDER_CONSTANT, 0);
+  cv::copyMakeBorder(mask_, mask_pad_, kPad, kPad, kPad, kPad, cv::BORDER_CONSTANT, 0);
   std::vector<cv::KeyPoint> kps;
   cv::Mat desc;
-  const auto view = [&](int m) { return cv::Rect(kPad - m, kPad - m, W + 2 * m, H * up + 2 * m); };
+  const auto view = [&](int m) { return cv::Rect(kPad - m, kPad - m, W + 2 * m, H + 2 * m); };
   detector_->detect(padded_(view(kFastMargin)), kps, mask_pad_(view(kFastMargin)));
   for (cv::KeyPoint& k : kps) k.pt += cv::Point2f(kMargin - kFastMargin, kMargin - kFastMargin);
   describer_->compute(padded_(view(kMargin)), kps, desc);
@@ -188,7 +179,7 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
   std::vector<int> keep;
   for (std::size_t i = 0; i < kps.size(); i++) {
     const int c = static_cast<int>(std::lround(kps[i].pt.x - kMargin));
-    const int r = static_cast<int>(std::floor((kps[i].pt.y - kMargin) / up));
+    const int r = static_cast<int>(std::floor(kps[i].pt.y - kMargin));
     if (r < 0 || r >= H || c < 0 || c >= W || !f.isValid(r, c)) continue;
     const cv::Vec3f& p = f.xyz(r, c);
     out.points.emplace_back(p[0], p[1], p[2]);

@@ -74,7 +74,6 @@ void HindsightParams::visit(ParamVisitor& v) {
   v.value("min_dynamic", min_dynamic);
   v.value("start_check", start_check);
   v.value("max_growth", max_growth);
-  v.value("settle_distance", settle_distance);
   v.value("stop_check", stop_check);
   v.value("rest_speed", rest_speed);
   v.value("later_surface_check", later_surface_check);
@@ -90,7 +89,6 @@ void HindsightParams::validate() const {
   requireInRange("speed_window", speed_window, 0, 60);
   requireInRange("min_dynamic", min_dynamic, 0, 60);
   requirePositive("max_growth", max_growth);
-  requireInRange("settle_distance", settle_distance, 0, 1000);
   requireInRange("rest_speed", rest_speed, 0, 100);
 }
 
@@ -486,7 +484,7 @@ bool Hindsight::stoppedAt(const std::vector<Held>& held, const TrackedObject& o)
 }
 
 int Hindsight::settle(const std::vector<Held>& held) {
-  if ((p_.settle_distance <= 0 && !p_.stop_check) || held.size() < 2) return 0;
+  if (!p_.stop_check || held.size() < 2) return 0;
   const auto start = std::chrono::steady_clock::now();
   DetectionResult& first = *held[0].result;
   int unflagged = 0;
@@ -495,7 +493,6 @@ int Hindsight::settle(const std::vector<Held>& held) {
     // Where the track is in the later held frames that see it, carried into the first frame
     // (T_{0<-j}); no verdict across a failed ego-motion.
     Eigen::Isometry3d T_0j = Eigen::Isometry3d::Identity();
-    double way = -1, span = 0;
     path_.clear();  // the first frame and the later ones that see the track, oldest first
     path_.emplace_back(0, o.centroid);
     for (std::size_t j = 1; j < held.size(); j++) {
@@ -505,12 +502,8 @@ int Hindsight::settle(const std::vector<Held>& held) {
       const TrackedObject* later = findTrack(r.objects, o.id);
       if (!later) continue;
       path_.emplace_back(j, T_0j * later->centroid);
-      way = std::max(way, (path_.back().second - o.centroid).head<2>().norm());
-      span = secondsBetween(held[0], held[j], j);
     }
-    const bool settled = p_.settle_distance > 0 && way >= 0 && span >= 0.5 * p_.lag - 1e-9 &&
-                         way < p_.settle_distance;
-    if (!settled && !(p_.stop_check && stoppedAt(held, o))) continue;
+    if (!stoppedAt(held, o)) continue;
     o.dynamic = false;
     unflagged++;
   }

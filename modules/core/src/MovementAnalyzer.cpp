@@ -19,7 +19,6 @@ void MovementParams::visit(ParamVisitor& v) {
   v.value("planar", planar);
   v.degrees("long_object_angle", long_object_angle);
   v.value("long_object_elongation", long_object_elongation);
-  v.value("long_object_length", long_object_length);
   v.value("rigid_tolerance", rigid_tolerance);
   v.value("rigid_ends_length", rigid_ends_length);
   v.value("long_object_ego_ratio", long_object_ego_ratio);
@@ -35,7 +34,6 @@ void MovementParams::validate() const {
   requireInRange("min_straightness", min_straightness, 0, 1);
   requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
   requireInRange("long_object_elongation", long_object_elongation, 1, 1000);
-  requireInRange("long_object_length", long_object_length, 0, 1000);
   requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
   requireInRange("rigid_ends_length", rigid_ends_length, 0, 1000);
   requireInRange("long_object_ego_ratio", long_object_ego_ratio, 0, 1000);
@@ -115,10 +113,10 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   const double straightness = d.early ? std::sqrt(p_.min_straightness) : p_.min_straightness;
   d.drift = d.path <= 0 || d.displacement / d.path < straightness;
 
-  // Eq. (21)-(23), for clusters at least this elongated and long (by default every cluster: a
-  // compact cluster's PCA axis is noise, but a rigid mover is exempt once free space proves it).
-  if (d.candidate && cluster.elongation >= p_.long_object_elongation &&
-      cluster.length >= p_.long_object_length) {
+  // Eq. (21)-(23), for clusters at least this elongated (by default every cluster with a
+  // horizontal spread: a compact cluster's PCA axis is noise, but a rigid mover is exempt once
+  // free space proves it).
+  if (d.candidate && cluster.elongation >= p_.long_object_elongation) {
     const Eigen::Vector3d v = (cw.back() - cw.front()) / d.displacement;  // Eq. (21)
     const Eigen::Matrix3d R = T_first_last.linear();                      // current -> first frame
     const Eigen::Vector3d V =

@@ -16,7 +16,6 @@ void TrackingParams::visit(ParamVisitor& v) {
   v.value("confirm_frames", confirm_frames);
   v.value("release_frames", release_frames);
   v.value("settled_frames", settled_frames);
-  v.value("settled_confirm_frames", settled_confirm_frames);
   v.value("stop_at_rest", stop_at_rest);
 }
 
@@ -27,7 +26,6 @@ void TrackingParams::validate() const {
   requireInRange("confirm_frames", confirm_frames, 1, 1000);
   requireInRange("release_frames", release_frames, 1, 1000);
   requireInRange("settled_frames", settled_frames, 1, 100000);
-  requireInRange("settled_confirm_frames", settled_confirm_frames, 1, 1000);
 }
 
 TrackManager::TrackManager(const TrackingParams& p, int window)
@@ -160,7 +158,7 @@ void TrackManager::decide(Track& t, const MovementDecision& d) {
   } else if (moving) {
     t.positives++;
     t.negatives = 0;
-    if (t.positives >= (t.settled ? p_.settled_confirm_frames : p_.confirm_frames)) {
+    if (t.positives >= p_.confirm_frames) {
       t.dynamic = true;
       t.settled = false;
       t.halted = false;

@@ -35,7 +35,7 @@ TEST(Clusterer, TwoGroupsOneMetreApartGiveTwoClusters) {
                                     {8, 21, 5, 1.1f, 0},
                                     {9, 20, 5, 1.0f, -0.1f}});
   cv::Mat_<std::uint8_t> features = f.valid.clone();
-  for (const char* search : {"grid", "kdtree", "image"}) {
+  for (const char* search : {"grid", "kdtree"}) {
     ClusteringParams p;
     p.search = search;
     p.min_points = 2;
@@ -62,34 +62,6 @@ TEST(Clusterer, HorizontalAndVerticalThresholdsAreSeparate) {
   EXPECT_TRUE(out[0].pixels.size() == 3u || out[1].pixels.size() == 3u);
 }
 
-TEST(Clusterer, ImageWindowEqualsKdTreeOnASparseScene) {
-  // Oracle: with objects far enough that the image window covers epsilon, both searches agree.
-  dynobj::test::Scene scene;
-  scene.posts = {{6, 0, 0.3, 1.7}, {6, 0.5, 0.3, 1.7}, {-5, 4, 0.25, 1.8}, {2, -7, 0.3, 1.0}};
-  const LidarFrame f = dynobj::test::render(scene, dynobj::test::smallSensor(16, 360));
-  cv::Mat_<std::uint8_t> features(f.rows(), f.cols(), std::uint8_t{0});
-  for (int r = 0; r < f.rows(); r++)
-    for (int c = 0; c < f.cols(); c++)
-      if (f.isValid(r, c) && f.range(r, c) < 11.0f && f.xyz(r, c)[2] > -0.99f) features(r, c) = 255;
-  ClusteringParams a, b;
-  a.search = "kdtree";
-  b.search = "image";
-  b.max_window = 64;
-  a.min_points = b.min_points = 1;
-  std::vector<Cluster> ca, cb;
-  Clusterer(a).cluster(f, features, ca);
-  Clusterer(b).cluster(f, features, cb);
-  ASSERT_EQ(ca.size(), cb.size());
-  auto sizes = [](const std::vector<Cluster>& v) {
-    std::vector<std::size_t> s;
-    for (const auto& c : v) s.push_back(c.pixels.size());
-    std::sort(s.begin(), s.end());
-    return s;
-  };
-  EXPECT_EQ(sizes(ca), sizes(cb));
-  EXPECT_EQ(ca.size(), 3u);  // the two close posts merge (0.5 m apart, edges 0.2 m)
-}
-
 TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
   // Oracle: single linkage under Eq. (6)-(7) by brute force (all pairs), on random points with
   // distances around both thresholds; every feature is its own voxel (voxel = 0).
@@ -106,7 +78,6 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
     p.voxel = 0;
     p.min_points = 1;
     p.max_points = 100000;
-    p.max_length = 0;
     std::vector<int> parent(pts.size());
     for (int i = 0; i < n; i++) parent[i] = i;
     const std::function<int(int)> find = [&](int x) {
@@ -142,7 +113,7 @@ TEST(Clusterer, UnknownSearchIsAnErrorNamingTheKey) {
     FAIL() << "no error";
   } catch (const ParameterError& e) {
     EXPECT_NE(std::string(e.what()).find("search"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("grid, kdtree, image"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("grid, kdtree"), std::string::npos) << e.what();
   }
 }
 
@@ -176,7 +147,6 @@ TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
     ClusteringParams p;
     p.search = search;
     p.min_points = 1;
-    p.max_length = 0;
     p.max_area = 1.0;  // m^2: the sheet is larger, the packed object is not
     std::vector<Cluster> out;
     Clusterer(p).cluster(f, f.valid, out);

@@ -408,59 +408,30 @@ namespace {
 
 /// `n` frames 0.1 s apart of a post standing still in the world at x = 4 while the sensor drives
 /// forward `speed` m/s, flagged (dynamic) in every frame; ego-motion known (ok).
-Sequence standingPost(int n, double speed, double jitter = 0) {
+Sequence standingPost(int n, double speed) {
   std::vector<Eigen::Vector2d> at;
-  for (int j = 0; j < n; j++) at.emplace_back(4 - 0.1 * speed * j, j % 2 ? jitter : 0.0);
+  for (int j = 0; j < n; j++) at.emplace_back(4 - 0.1 * speed * j, 0.0);
   Sequence seq(at, forward(0.1 * speed), static_cast<std::size_t>(n));
   for (DetectionResult& r : seq.results) r.ego_motion.ok = true;
   return seq;
 }
 
-/// settle_distance alone (stop_check off: a post at rest would pass it too).
-HindsightParams settling(double distance) {
-  HindsightParams p;
-  p.settle_distance = distance;
-  p.stop_check = false;
-  return p;
-}
-
 }  // namespace
 
-TEST(Hindsight, SettleUnflagsAnObjectThatGetsNowhereOverTheLag) {
-  // 1 s of frames (lag), the post at rest in the world while the sensor drives at 2 m/s and its
-  // centroid jitters 0.1 m: unflagged in the first frame (pixels and object), the others kept.
-  Sequence seq = standingPost(11, 2.0, 0.1);
-  EXPECT_EQ(Hindsight(settling(0.2)).settle(seq.held()), 1);
-  EXPECT_TRUE(seq.flagged(0).empty());
-  EXPECT_FALSE(seq.results[0].objects[0].dynamic);
-  for (std::size_t j = 1; j < seq.frames.size(); j++) EXPECT_EQ(seq.flagged(j), seq.post[j]);
-  EXPECT_EQ(cv::countNonZero(seq.results[0].seeds), 0);
-}
-
-TEST(Hindsight, SettleKeepsAMoverAndDecidesNothingOnAShortViewOrWhenOff) {
-  Sequence walker(walking(11), forward(0), 11);  // 1.5 m/s: 0.15 m per frame
-  for (DetectionResult& r : walker.results) r.ego_motion.ok = true;
-  EXPECT_EQ(Hindsight(settling(0.2)).settle(walker.held()), 0);
-  EXPECT_EQ(walker.flagged(0), walker.post[0]);
-
-  Sequence brief = standingPost(5, 0.0);  // 0.4 s held: less than lag / 2 = 0.5 s later
-  EXPECT_EQ(Hindsight(settling(0.2)).settle(brief.held()), 0);
-  EXPECT_EQ(brief.flagged(0), brief.post[0]);
-
-  Sequence off = standingPost(11, 0.0);  // settle_distance = 0 (the default): off
-  EXPECT_EQ(Hindsight(settling(0)).settle(off.held()), 0);
-  EXPECT_EQ(off.flagged(0), off.post[0]);
-}
-
-TEST(Hindsight, SettleJudgesInTheWorldAndNotAcrossAFailedEgoMotion) {
-  // In the sensor frame the post slides 0.2 m per frame; in the world it stands: unflagged.
+TEST(Hindsight, StopCheckJudgesInTheWorldAndNotAcrossAFailedEgoMotion) {
+  // In the sensor frame the post slides 0.2 m per frame (2 m/s, above rest_speed); in the world
+  // it stands: unflagged in the first frame (pixels and object), the others kept.
   Sequence driving = standingPost(11, 2.0);
-  EXPECT_EQ(Hindsight(settling(0.2)).settle(driving.held()), 1);
-  // The same with the ego-motion failed after 3 frames: the frames that see it are 0.3 s later
-  // at most, no verdict.
+  EXPECT_EQ(Hindsight().settle(driving.held()), 1);
+  EXPECT_TRUE(driving.flagged(0).empty());
+  EXPECT_FALSE(driving.results[0].objects[0].dynamic);
+  for (std::size_t j = 1; j < driving.frames.size(); j++)
+    EXPECT_EQ(driving.flagged(j), driving.post[j]);
+  EXPECT_EQ(cv::countNonZero(driving.results[0].seeds), 0);
+  // The same with the ego-motion failed into frame 2: one step out of frame 0, no verdict.
   Sequence failed = standingPost(11, 2.0);
-  failed.results[4].ego_motion.ok = false;
-  EXPECT_EQ(Hindsight(settling(0.2)).settle(failed.held()), 0);
+  failed.results[2].ego_motion.ok = false;
+  EXPECT_EQ(Hindsight().settle(failed.held()), 0);
   EXPECT_EQ(failed.flagged(0), failed.post[0]);
 }
 
@@ -529,13 +500,10 @@ TEST(Hindsight, RestSpeedJudgesTheNetWayOutOfASweepAfterTheTracksSpeedHasFallen)
       unflaggedOnStop({-1.2, -1.05, -0.9, -0.75, -0.75, -0.6, -0.45, -0.3}, true, 0.3).empty());
 }
 
-TEST(Hindsight, SettleDistanceIsValidated) {
+TEST(Hindsight, RestSpeedIsValidated) {
   HindsightParams p;
-  p.settle_distance = -0.1;
+  p.rest_speed = -1;
   EXPECT_THROW(p.validate(), ParameterError);
-  HindsightParams q;
-  q.rest_speed = -1;
-  EXPECT_THROW(q.validate(), ParameterError);
 }
 
 /// Frames at 3 m/s across the sensor's view (0.3 m per 0.1 s), `n` of them.

@@ -152,33 +152,26 @@ TEST(TrackManager, HysteresisStopsFlicker) {
   EXPECT_FALSE(u.dynamic);
 }
 
-TEST(TrackManager, SettledTracksNeedLongerConfirmation) {
+TEST(TrackManager, SettledAfterSettledFramesStaticDecisionsUntilItMovesAgain) {
   TrackingParams p;
   p.confirm_frames = 2;
   p.settled_frames = 3;
-  p.settled_confirm_frames = 4;
   TrackManager tm(p, 5);
   MovementDecision yes, no;
   yes.enough_history = yes.candidate = true;
   no.enough_history = true;
-  Track fresh;  // never judged static: the usual two frames
-  tm.decide(fresh, yes);
-  tm.decide(fresh, yes);
-  EXPECT_TRUE(fresh.dynamic);
-  Track post;  // static three times in a row: settled, a two-frame flicker stays static
+  Track post;  // static three times in a row: settled, at rest
   for (int i = 0; i < 3; i++) tm.decide(post, no);
   EXPECT_TRUE(post.settled);
-  for (int i = 0; i < 3; i++) {
-    tm.decide(post, yes);
-    EXPECT_FALSE(post.dynamic) << "moving decision " << i + 1;
-  }
-  tm.decide(post, yes);  // the fourth in a row: it really started
+  EXPECT_TRUE(post.atRest());
+  tm.decide(post, yes);  // one moving decision: still settled and static
+  EXPECT_FALSE(post.dynamic);
+  EXPECT_TRUE(post.settled);
+  tm.decide(post, yes);  // confirm_frames in a row: it started, no longer settled
   EXPECT_TRUE(post.dynamic);
   EXPECT_FALSE(post.settled);
   Track brief;  // two static decisions are not enough to settle
   tm.decide(brief, no);
   tm.decide(brief, no);
-  tm.decide(brief, yes);
-  tm.decide(brief, yes);
-  EXPECT_TRUE(brief.dynamic);
+  EXPECT_FALSE(brief.settled);
 }

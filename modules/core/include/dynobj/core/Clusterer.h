@@ -3,8 +3,8 @@
 // horizontal (d_xy) and vertical (d_z) thresholds: two points are neighbours when
 // d_xy <= horizontal_distance and d_z <= vertical_distance; clusters are the connected components
 // (single linkage, the usual reading of Eq. 7). Neighbours are found (`search`) in a uniform grid
-// of epsilon-sized cells (default, O(n)), with a nanoflann KD-tree (same links, slower; kept as the
-// oracle) or in the range image around each pixel (the window spans epsilon at the pixel's range).
+// of epsilon-sized cells (default, O(n)) or with a nanoflann KD-tree (same links, slower; kept as
+// the oracle).
 #pragma once
 
 #include <Eigen/Core>
@@ -26,15 +26,11 @@ struct ClusteringParams : public StageParams {
   /// min_points for a sweep; 0 or >= min_points = off). Beyond the paper, docs/algorithm.md §5
   int weak_min_points = 2;
   int max_points = 100000;  ///< larger clusters are dropped (a safety bound in pixels)
-  double max_area = 20.0;   ///< [m^2] grid/kdtree with voxel > 0: clusters whose features fill
+  double max_area = 20.0;   ///< [m^2] with voxel > 0: clusters whose features fill
                             ///< more voxels than this area are dropped (facades, shelves); a car
                             ///< seen from 2 m fills ~10 m^2 (0 = no limit)
-  double max_length = 0.0;  ///< [m] longer clusters are dropped too (0 = no limit, the default:
-                            ///< a car seen head-on merges with what it passes, and buses and
-                            ///< trucks are longer; docs/algorithm.md §4)
-  std::string search = "grid";  ///< neighbour search: grid | kdtree | image
-  double voxel = 0.17;          ///< [m] grid/kdtree: one point per voxel of this size (0 = all)
-  int max_window = 16;          ///< image search: at most this many columns each side
+  std::string search = "grid";  ///< neighbour search: grid | kdtree
+  double voxel = 0.17;          ///< [m] one point per voxel of this size (0 = all)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -67,14 +63,12 @@ class Clusterer {
                std::vector<Cluster>& out, std::vector<Cluster>* weak = nullptr);
 
  private:
-  void clusterImage(const LidarFrame& frame, std::vector<int>& label);
   void clusterPoints(const LidarFrame& frame, std::vector<int>& label);  ///< grid or kdtree
   void linkKdTree(std::vector<int>& parent);                             ///< union-find over pts_
   void linkGrid(std::vector<int>& parent);  ///< the same links, from a cell grid
 
   ClusteringParams p_;
   std::vector<int> pixels_;
-  cv::Mat_<int> index_;  ///< pixel -> position in pixels_, -1 if not a feature
   std::vector<int> count_, slot_;
   std::vector<int> voxels_;  ///< per component label: voxels (representatives) it spans
   std::vector<int> label_, parent_, rep_of_, first_feature_;  ///< per-frame scratch, kept

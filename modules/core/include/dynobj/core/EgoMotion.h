@@ -11,15 +11,14 @@
 namespace dynobj::core {
 
 struct EgoMotionParams : public StageParams {
-  int features = 400;         ///< ORB nfeatures
-  double scale_factor = 1.2;  ///< ORB scaleFactor
-  int levels = 1;             ///< ORB nlevels (the 33 px padding gives level 0 room)
-  int fast_threshold = 10;    ///< ORB fastThreshold (10 suits sparse indoor scenes)
-  int upsample = 1;           ///< vertical upsampling factor (1 = none; 2 = same accuracy, slower)
-  double ratio = 0.8;         ///< Lowe ratio test
-  int match_window = 64;      ///< [columns] match only keypoints this close in azimuth
-                              ///< (0 = all); on failure, all are tried before giving up
-  int border = 2;             ///< [px] no keypoint this close to a no-return pixel
+  int features = 400;                 ///< ORB nfeatures
+  double scale_factor = 1.2;          ///< ORB scaleFactor
+  int levels = 1;                     ///< ORB nlevels (the 33 px padding gives level 0 room)
+  int fast_threshold = 10;            ///< ORB fastThreshold (10 suits sparse indoor scenes)
+  double ratio = 0.8;                 ///< Lowe ratio test
+  int match_window = 64;              ///< [columns] match only keypoints this close in azimuth
+                                      ///< (0 = all); on failure, all are tried before giving up
+  int border = 2;                     ///< [px] no keypoint this close to a no-return pixel
   double inlier_distance = 0.10;      ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
   /// [px] beyond the paper: a keypoint's pixel is uncertain by this much in each image direction,

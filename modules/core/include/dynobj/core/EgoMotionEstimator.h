@@ -59,7 +59,7 @@ class EgoMotionEstimator {
   Features prev_, cur_;
   bool have_prev_ = false;
   std::mt19937 rng_;
-  cv::Mat img8_, up_, padded_, mask_, mask_up_, mask_pad_;
+  cv::Mat img8_, padded_, mask_, mask_pad_;
   std::vector<std::vector<int>> buckets_;
   PixelPitch pitch_;                 ///< the current sensor's
   std::vector<PointMatch> matches_;  ///< solve()'s matches (kept: no allocation per frame)

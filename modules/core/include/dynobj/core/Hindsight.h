@@ -10,8 +10,8 @@
 // never over what the newest held frame still sees there (later_surface_check); sweeps where
 // its track was not seen take the object's points about where it was, between two sightings
 // (fill_gaps) or before its first (fill_before), where nearby held frames saw that place left
-// free; before a frame is written, an object that stood there (stop_check) or whose track then got
-// nowhere (settle_distance) is unflagged. lag = 0 is the paper's online behaviour.
+// free; before a frame is written, an object that stood there (stop_check) is unflagged.
+// lag = 0 is the paper's online behaviour.
 // See docs/algorithm.md §9.
 #pragma once
 
@@ -77,9 +77,6 @@ struct HindsightParams : public StageParams {
   /// through its place (a far walker of a few points a sweep, found only as it nears; false =
   /// off)
   bool fill_before = true;
-  double settle_distance = 0;  ///< [m] a flagged object whose track, seen over the next `lag`
-                               ///< (half of it at least), never gets this far from where it is
-                               ///< is unflagged before its frame is written; 0 = off
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -106,10 +103,7 @@ class Hindsight {
   /// `held`: one sensor's held frames, oldest first; the oldest is about to be written. Unflags
   /// there the dynamic objects that stood there (stop_check: the two steps to the next sweeps
   /// that see its track, the first of them the next held frame, each slower than a quarter of
-  /// its track's speed, or both together slower than rest_speed), and those whose tracks, seen from
-  /// that frame, get no farther than settle_distance from where they are in any later held frame,
-  /// when the last of those is at least lag / 2 later: a mover must get somewhere (swaying foliage,
-  /// a walker who stopped). Returns the objects unflagged.
+  /// its track's speed, or both together slower than rest_speed). Returns the objects unflagged.
   int settle(const std::vector<Held>& held);
 
   /// Frames a run holds for a sensor at `frequency` [Hz] (0 when lag = 0).

@@ -83,7 +83,7 @@ class HindsightQueue {
                                         [&](const Item& e) { return e.sensor == h.sensor; });
         if (same <= hindsight_.heldFrames(frame_of_(h.data).sensor.frequency)) return;
       }
-      hindsight_.settle(heldOf(h.sensor));  // stop_check, settle_distance
+      hindsight_.settle(heldOf(h.sensor));  // stop_check
       release(h);
       held_.pop_front();
     }

@@ -40,9 +40,9 @@ struct MovementParams : public StageParams {
   /// and reads as drift; things move along the ground. false = 3-D steps, the paper.
   bool planar = true;
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
-  double long_object_elongation = 1.0;           ///< only clusters at least this elongated ...
-  double long_object_length = 0.0;               ///< ... and this long [m] are tested for Eq. (23)
-                                                 ///< (defaults: every cluster; see rigid_tolerance)
+  double long_object_elongation = 1.0;  ///< only clusters at least this elongated are tested
+                                        ///< for Eq. (23) (default: every cluster with a
+                                        ///< horizontal spread; see rigid_tolerance)
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never

@@ -20,13 +20,10 @@ struct TrackingParams : public StageParams {
   int max_missed = 5;          ///< frames a track coasts unseen before it is dropped
   double process_noise = 2.0;  ///< [m/s^2] white acceleration of the constant-velocity model
   double measurement_noise = 0.1;  ///< [m] centroid noise
-  bool hysteresis = true;   ///< confirm / release counters (false: state = this frame's test)
-  int confirm_frames = 2;   ///< consecutive moving decisions to become dynamic
-  int release_frames = 4;   ///< consecutive static decisions to become static again
-  int settled_frames = 10;  ///< a track judged static this many times in a row is settled ...
-  int settled_confirm_frames = 2;  ///< ... and needs this many moving decisions instead (trees,
-                                   ///< poles and parked cars flicker; a real start keeps moving).
-                                   ///< Default = confirm_frames: off (docs/algorithm.md §7c)
+  bool hysteresis = true;    ///< confirm / release counters (false: state = this frame's test)
+  int confirm_frames = 2;    ///< consecutive moving decisions to become dynamic
+  int release_frames = 4;    ///< consecutive static decisions to become static again
+  int settled_frames = 10;   ///< a track judged static this many times in a row is settled
   bool stop_at_rest = true;  ///< a mover released by a clear stop ([movement] stop_window) is at
                              ///< rest at once, not only once settled (a walker who pauses beside
                              ///< a passer; false = only once settled)
