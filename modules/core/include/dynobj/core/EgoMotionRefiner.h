@@ -38,7 +38,7 @@ struct EgoRefinementParams : public StageParams {
   /// half a pixel's footprint away, metres on the far ground of a 16-row sensor: gating that
   /// distance at final_distance kept the partners that happened to lie near a ring and tilted a
   /// VLP-16's pitch by 0.16 deg per sweep on a street (0 = gate the distance itself at
-  /// max_distance ... final_distance, as before session 19)
+  /// max_distance ... final_distance)
   double max_offset = 1.0;
   double huber = 0.05;     ///< [m] Huber kernel width on point-to-plane residuals
   double damping = 0.001;  ///< step damping, relative to the mean information per axis
