@@ -169,13 +169,68 @@ MapScores scoreMap(const std::vector<MapPoint>& st, double tolerance, ScanSource
   return eval.scores();
 }
 
-MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
+
+std::int64_t nanoseconds(double s) {
+  return static_cast<std::int64_t>(std::llround(s * 1e9));
+}
+
+/// runMapClean()'s state over its passes.
+class MapCleanRun {
+ public:
+  /// Checks the outputs and the files named, opens the input (a chunk: its scans and overlap),
+  /// the pose source and the output writers.
+  MapCleanRun(const MapCleanOptions& o, const MapCleanProgress& progress);
+  /// The one pass: the detector over every scan; each scan mapped backfill_window later.
+  void detectAndMap();
+  /// The voxel vote, the voxels seen through; the maps written, the writers closed.
+  void finish();
+  /// SA / DA / AA of the static map against the ground truth (a further pass over the input).
+  void score();
+  /// A chunk's chunk.ini (last: a folder with it is complete).
+  void writeChunkInfo();
+  MapCleanSummary& summary() { return sum_; }
+
+ private:
+  std::unique_ptr<ScanSource> open() const;
+  bool own(std::int64_t t) const { return t >= own_begin_ && t < own_end_; }
+  FrameRecord record(const mrptio::FrameResult& fr);
+  void mapScan(const Scan& s, const FrameRecord& rec);
+  /// The share of the work done when `rec` is mapped (negative: not known).
+  double shareDone(const FrameRecord& rec) const;
+
+  const MapCleanOptions& o_;
+  const MapCleanProgress& progress_;
+  std::string out_;
+  std::optional<mrptio::GroundTruth> labels_;  // the classification instead of the detector's
+  // A chunk: only its scans are mapped; those of the overlap before and after are read too.
+  std::int64_t first_scan_ = 0, own_begin_ = std::numeric_limits<std::int64_t>::min(),
+               own_end_ = kNever;
+  std::unique_ptr<ScanSource> source_;
+  std::unique_ptr<PoseSource> poses_;
+  std::unique_ptr<mrptio::SequenceRunner> runner_;
+  const mrptio::GroundTruth* gt_labels_ = nullptr;
+  MapCleaner cleaner_;
+  GroundLeveler leveler_;
+  std::unique_ptr<CleanedSimplemapWriter> simplemap_;
+  std::unique_ptr<KthExporter> exporter_;
+  std::unique_ptr<io::TumWriter> tum_, overlap_tum_;  // overlap: a chunk's scans read, not mapped
+  std::vector<io::TimedPose> mapped_poses_;           // for the metrics' pass (a few MB per hour)
+  std::vector<MapPoint> static_points_;
+  std::int64_t last_mapped_ = 0;
+  std::size_t scans_read_ = 0;
+  bool reached_end_ = false;
+  MapCleanSummary sum_;
+};
+
+MapCleanRun::MapCleanRun(const MapCleanOptions& o, const MapCleanProgress& progress)
+    : o_(o), progress_(progress), out_(o.out_dir + "/"), cleaner_(o.clean) {
   if (!o.overwrite)
     for (const std::string& f : outputFiles(o))
       if (fs::exists(f))
         throw std::runtime_error("output '" + f + "' exists (use -w to replace it)");
-  std::optional<mrptio::GroundTruth> labels;  // the classification instead of the detector's
   if (!o.labels.empty()) {
     if (o.poses == "ego")
       throw std::runtime_error(
@@ -183,198 +238,208 @@ MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& pr
           "another pose source");
     if (!fs::is_regular_file(o.labels))
       throw std::runtime_error("label file '" + o.labels + "' does not exist");
-    labels.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
+    labels_.emplace(o.labels, mrptio::GroundTruth::Options{"label file", false});
   }
-  // A chunk: only its scans are mapped; those of the overlap before and after are read too.
-  constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
-  std::int64_t first_scan = 0, own_begin = std::numeric_limits<std::int64_t>::min(),
-               own_end = kNever;
-  auto source = openScanSource(o.input, o.scan_options);
-  const auto window = [&](std::unique_ptr<ScanSource> scans) -> std::unique_ptr<ScanSource> {
-    if (!o.chunk) return scans;
-    const auto overlap = static_cast<std::int64_t>(std::llround(o.chunk->overlap * 1e9));
-    return std::make_unique<TimeWindowSource>(std::move(scans), own_begin - overlap,
-                                              own_end == kNever ? own_end : own_end + overlap);
-  };
   if (o.chunk) {
     o.chunk->validate();
-    first_scan = firstScanTime(*source);
-    own_begin = first_scan + static_cast<std::int64_t>(std::llround(o.chunk->from * 1e9));
-    if (std::isfinite(o.chunk->to))
-      own_end = first_scan + static_cast<std::int64_t>(std::llround(o.chunk->to * 1e9));
-    source = window(std::move(source));
+    auto whole = openScanSource(o.input, o.scan_options);
+    first_scan_ = firstScanTime(*whole);
+    own_begin_ = first_scan_ + nanoseconds(o.chunk->from);
+    if (std::isfinite(o.chunk->to)) own_end_ = first_scan_ + nanoseconds(o.chunk->to);
   }
+  source_ = open();
   PoseSourceOptions pose_options = o.pose_options;
-  pose_options.ego_available = !labels;
-  auto poses = makePoseSource(o.poses, pose_options);
-  mrptio::SequenceOptions pass1;  // detection, ground truth checked against every scan
-  pass1.detector = o.detector;
-  pass1.detect = !labels;
-  pass1.single_sensor = true;       // one LiDAR per map
-  pass1.require_frames = !o.chunk;  // a chunk's range without a scan: said below
+  pose_options.ego_available = !labels_;
+  poses_ = makePoseSource(o.poses, pose_options);
+  mrptio::SequenceOptions pass;  // detection, ground truth checked against every scan
+  pass.detector = o.detector;
+  pass.detect = !labels_;
+  pass.single_sensor = true;       // one LiDAR per map
+  pass.require_frames = !o.chunk;  // a chunk's range without a scan: said after the pass
   if (!o.ground_truth.empty()) {
     if (!fs::is_regular_file(o.ground_truth))
       throw std::runtime_error("ground truth '" + o.ground_truth + "' does not exist");
-    if (!isPcd(o.ground_truth)) pass1.ground_truth = o.ground_truth;
+    if (!isPcd(o.ground_truth)) pass.ground_truth = o.ground_truth;
   }
-  mrptio::SequenceRunner runner(*source, pass1);
-  const mrptio::GroundTruth* gt_labels = runner.groundTruth() ? &*runner.groundTruth() : nullptr;
+  runner_ = std::make_unique<mrptio::SequenceRunner>(*source_, pass);
+  gt_labels_ = runner_->groundTruth() ? &*runner_->groundTruth() : nullptr;
   if (o.out_dir.empty()) throw std::runtime_error("no output folder");
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
   if (!fs::is_directory(o.out_dir))
     throw std::runtime_error("cannot create output directory '" + o.out_dir + "'");
-  const std::string out = o.out_dir + "/";
-
-  MapCleanSummary sum;
-  MapCleaner cleaner(o.clean);
-  std::unique_ptr<CleanedSimplemapWriter> simplemap;
   if (o.formats.simplemap)
-    simplemap = std::make_unique<CleanedSimplemapWriter>(out + "cleaned.simplemap",
-                                                         o.keyframe_distance, o.keyframe_angle);
-  std::unique_ptr<KthExporter> exporter;
+    simplemap_ = std::make_unique<CleanedSimplemapWriter>(out_ + "cleaned.simplemap",
+                                                          o.keyframe_distance, o.keyframe_angle);
   if (!o.export_kth.empty())
-    exporter = std::make_unique<KthExporter>(o.export_kth, gt_labels != nullptr, o.overwrite);
-  io::TumWriter tum(out + "poses.tum", "sensor pose in the world, as mapped by dynobj-mapclean");
-  std::vector<io::TimedPose> mapped_poses;     // for the metrics' pass (a few MB per hour)
-  std::unique_ptr<io::TumWriter> overlap_tum;  // a chunk's scans read but not mapped
+    exporter_ = std::make_unique<KthExporter>(o.export_kth, gt_labels_ != nullptr, o.overwrite);
+  tum_ = std::make_unique<io::TumWriter>(out_ + "poses.tum",
+                                         "sensor pose in the world, as mapped by dynobj-mapclean");
   if (o.chunk)
-    overlap_tum = std::make_unique<io::TumWriter>(
-        out + "overlap.tum", "sensor pose of the scans a dynobj-mapclean chunk read, not mapped");
-  std::int64_t last_mapped = 0;
-  std::size_t scans_read = 0;
-  const auto own = [&](std::int64_t t) { return t >= own_begin && t < own_end; };
+    overlap_tum_ = std::make_unique<io::TumWriter>(
+        out_ + "overlap.tum", "sensor pose of the scans a dynobj-mapclean chunk read, not mapped");
+}
 
-  const auto mapScan = [&](const Scan& s, const FrameRecord& rec) {
-    if (!own(rec.timestamp_ns)) {  // a chunk's overlap: its views count, its points are not mapped
-      cleaner.look(s.frame, rec.sensor_pose);
-      overlap_tum->write(rec.timestamp_ns, rec.sensor_pose);
-      (rec.timestamp_ns < own_begin ? sum.scans_before : sum.scans_after)++;
-      return;
-    }
-    last_mapped = rec.timestamp_ns;
-    const cv::Mat_<std::uint8_t> mask = cleaner.dynamicMask(s.frame, rec);
-    cleaner.map(s.frame, mask, rec.sensor_pose);
-    if (simplemap) simplemap->add(s, mask, rec.sensor_pose);
-    if (exporter) {
-      const cv::Mat_<std::uint8_t> gt =
-          gt_labels ? gt_labels->mask(s.frame, s.index) : cv::Mat_<std::uint8_t>();
-      exporter->add(s.frame, rec.sensor_pose, gt_labels ? &gt : nullptr);
-    }
-    tum.write(rec.timestamp_ns, rec.sensor_pose);
-    if (!o.ground_truth.empty()) mapped_poses.push_back({rec.timestamp_ns, rec.sensor_pose});
-    ++sum.scans;
-    if (!progress) return;
-    // The share mapped: of the input's bytes, as many as read so far times the scans mapped of
-    // those read (the mapping trails the reading); a chunk with an end: of its time span.
-    const double read = source->progress();  // negative: not known
-    double done = read < 0 ? -1.0
-                           : read * static_cast<double>(sum.scans + sum.scans_before) /
-                                 static_cast<double>(std::max<std::size_t>(1, scans_read));
-    if (o.chunk && own_end != kNever) {
-      const double read_begin = static_cast<double>(own_begin) - 1e9 * o.chunk->overlap;
-      const double read_end = static_cast<double>(own_end) + 1e9 * o.chunk->overlap;
-      done = (static_cast<double>(rec.timestamp_ns) - read_begin) / (read_end - read_begin);
-    }
-    progress("map", sum.scans, 0, done < 0 ? done : std::min(done, 1.0));
-  };
+std::unique_ptr<ScanSource> MapCleanRun::open() const {
+  auto scans = openScanSource(o_.input, o_.scan_options);
+  if (!o_.chunk) return scans;
+  const std::int64_t overlap = nanoseconds(o_.chunk->overlap);
+  return std::make_unique<TimeWindowSource>(std::move(scans), own_begin_ - overlap,
+                                            own_end_ == kNever ? own_end_ : own_end_ + overlap);
+}
 
-  // One pass over the input. With back-fill, a scan is mapped backfill_window seconds after its
-  // detection, read again by a second reader that trails the detector's: memory holds the
-  // window's records (no points), never the recording.
-  const bool backfill = !labels && o.clean.backfill_window > 0;
-  const auto window_ns = static_cast<std::int64_t>(o.clean.backfill_window * 1e9);
-  std::unique_ptr<ScanSource> trailing;
-  if (backfill) trailing = window(openScanSource(o.input, o.scan_options));
+void MapCleanRun::detectAndMap() {
+  // With back-fill, a scan is mapped backfill_window seconds after its detection, read again by
+  // a second reader that trails the detector's: memory holds the window's records (no points),
+  // never the recording.
+  const bool backfill = !labels_ && o_.clean.backfill_window > 0;
+  const std::int64_t window = nanoseconds(o_.clean.backfill_window);
+  std::unique_ptr<ScanSource> trailing = backfill ? open() : nullptr;
   std::deque<FrameRecord> waiting;
   Scan scan;
   const auto mapOldest = [&] {
     if (!trailing->next(scan) || scan.frame.timestamp_ns != waiting.front().timestamp_ns)
-      throw std::runtime_error(source->describe() + " changed while it was read");
+      throw std::runtime_error(source_->describe() + " changed while it was read");
     mapScan(scan, waiting.front());
     waiting.pop_front();
   };
-  GroundLeveler leveler;
-  runner.run([&](const mrptio::FrameResult& fr) {
-    const Scan& s = fr.frame;
-    scans_read++;
-    Eigen::Isometry3d pose =
-        poses->pose(s, fr.detection ? fr.detection->ego_motion : core::EgoMotion{});
-    if (o.clean.level_poses)
-      if (const auto ground = leveler.fit(s.frame)) pose = leveler.level(pose, *ground);
-    FrameRecord rec;
-    if (labels) {
-      std::size_t k = 0;
-      const io::LabelSweep& sweep = labels->sweep(s.frame, s.index, &k);
-      if (!labels->labels().isReviewed(k)) sum.unreviewed_sweeps++;
-      rec = FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}};
-    } else {
-      rec = cleaner.record(*fr.detection, pose);
-      sum.data_faults.insert(sum.data_faults.end(), fr.detection->warnings.begin(),
-                             fr.detection->warnings.end());
-    }
-    if (!backfill) return mapScan(s, rec);
+  runner_->run([&](const mrptio::FrameResult& fr) {
+    FrameRecord rec = record(fr);
+    if (!backfill) return mapScan(fr.frame, rec);
     waiting.push_back(std::move(rec));
     while (waiting.size() > 1 && (waiting.back().timestamp_ns - waiting.front().timestamp_ns >
-                                      window_ns ||  // or the clock went back: no waiting on it
+                                      window ||  // or the clock went back: no waiting on it
                                   waiting.back().timestamp_ns < waiting.front().timestamp_ns))
       mapOldest();
   });
   while (!waiting.empty()) mapOldest();
-  sum.poses = poses->describe();  // after the first scan: what "auto" chose
-  const bool reached_end = o.chunk && dynamic_cast<const TimeWindowSource&>(*source).reachedEnd();
-  if (o.chunk && sum.scans == 0)
-    throw std::runtime_error("no scan of " + source->describe() + " from " + o.chunk->describe() +
+  sum_.poses = poses_->describe();  // after the first scan: what "auto" chose
+  if (!o_.chunk) return;
+  reached_end_ = dynamic_cast<const TimeWindowSource&>(*source_).reachedEnd();
+  if (sum_.scans == 0)
+    throw std::runtime_error("no scan of " + source_->describe() + " from " + o_.chunk->describe() +
                              " after its first scan");
+}
 
-  sum.voted = cleaner.finish();
-  sum.seen_through = cleaner.moveSeenThrough();
-  const std::vector<MapPoint> st = cleaner.staticMap().points(), dy = cleaner.dynamicMap().points();
-  sum.points_static = cleaner.staticMap().pointsInserted();
-  sum.points_dynamic = cleaner.dynamicMap().pointsInserted();
-  sum.map_static = st.size();
-  sum.map_dynamic = dy.size();
-  sum.backfilled = cleaner.backfilledPixels();
-  sum.confirmed_tracks = cleaner.confirmedTracks().size();
-  sum.files = writeMaps(o.out_dir, o.formats, st, dy, o.png_resolution);
-  tum.close();
-  sum.files.push_back(out + "poses.tum");
-  if (simplemap) {
-    simplemap->close();
-    sum.keyframes = simplemap->keyframes();
-    sum.files.push_back(out + "cleaned.simplemap");
+FrameRecord MapCleanRun::record(const mrptio::FrameResult& fr) {
+  const Scan& s = fr.frame;
+  scans_read_++;
+  Eigen::Isometry3d pose =
+      poses_->pose(s, fr.detection ? fr.detection->ego_motion : core::EgoMotion{});
+  if (o_.clean.level_poses)
+    if (const auto ground = leveler_.fit(s.frame)) pose = leveler_.level(pose, *ground);
+  if (labels_) {
+    std::size_t k = 0;
+    const io::LabelSweep& sweep = labels_->sweep(s.frame, s.index, &k);
+    if (!labels_->labels().isReviewed(k)) sum_.unreviewed_sweeps++;
+    return FrameRecord{s.frame.timestamp_ns, pose, sweep.pixels, {}};
   }
-  if (exporter) {
-    exporter->close();
-    sum.exported_frames = exporter->frames();
-    sum.exported_points = exporter->points();
-    sum.files.push_back(o.export_kth);
-  }
+  sum_.data_faults.insert(sum_.data_faults.end(), fr.detection->warnings.begin(),
+                          fr.detection->warnings.end());
+  return cleaner_.record(*fr.detection, pose);
+}
 
-  if (!o.ground_truth.empty()) {  // metrics: the final static map against every GT point
-    source->rewind();
-    sum.scores = scoreMap(st, o.tolerance, source.get(), gt_labels, o.ground_truth, mapped_poses,
-                          o.clean.min_range, progress);
+void MapCleanRun::mapScan(const Scan& s, const FrameRecord& rec) {
+  if (!own(rec.timestamp_ns)) {  // a chunk's overlap: its views count, its points are not mapped
+    cleaner_.look(s.frame, rec.sensor_pose);
+    overlap_tum_->write(rec.timestamp_ns, rec.sensor_pose);
+    (rec.timestamp_ns < own_begin_ ? sum_.scans_before : sum_.scans_after)++;
+    return;
   }
-  if (o.chunk) {
-    overlap_tum->close();
-    sum.files.push_back(out + "overlap.tum");
-    ChunkInfo info;
-    info.input = o.input;
-    info.first_scan_ns = first_scan;
-    info.range = *o.chunk;
-    info.scans = sum.scans;
-    info.scans_before = sum.scans_before;
-    info.scans_after = sum.scans_after;
-    info.reached_end = reached_end;
-    info.last_scan = 1e-9 * static_cast<double>(last_mapped - first_scan);
-    info.voxel_size = o.clean.voxel_size;
-    info.dynamic_vote = o.clean.dynamic_vote;
-    info.min_range = o.clean.min_range;
-    info.poses = sum.poses;
-    info.formats = o.formats.toString();
-    info.write(sum.files.emplace_back(out + "chunk.ini"));
+  last_mapped_ = rec.timestamp_ns;
+  const cv::Mat_<std::uint8_t> mask = cleaner_.dynamicMask(s.frame, rec);
+  cleaner_.map(s.frame, mask, rec.sensor_pose);
+  if (simplemap_) simplemap_->add(s, mask, rec.sensor_pose);
+  if (exporter_) {
+    const cv::Mat_<std::uint8_t> gt =
+        gt_labels_ ? gt_labels_->mask(s.frame, s.index) : cv::Mat_<std::uint8_t>();
+    exporter_->add(s.frame, rec.sensor_pose, gt_labels_ ? &gt : nullptr);
   }
+  tum_->write(rec.timestamp_ns, rec.sensor_pose);
+  if (!o_.ground_truth.empty()) mapped_poses_.push_back({rec.timestamp_ns, rec.sensor_pose});
+  ++sum_.scans;
+  if (progress_) progress_("map", sum_.scans, 0, shareDone(rec));
+}
+
+double MapCleanRun::shareDone(const FrameRecord& rec) const {
+  if (o_.chunk && own_end_ != kNever) {  // a chunk with an end: of its time span
+    const double begin = static_cast<double>(own_begin_) - 1e9 * o_.chunk->overlap;
+    const double end = static_cast<double>(own_end_) + 1e9 * o_.chunk->overlap;
+    return std::clamp((static_cast<double>(rec.timestamp_ns) - begin) / (end - begin), 0.0, 1.0);
+  }
+  // Of the input's bytes: as many as read so far, times the scans mapped of those read (the
+  // mapping trails the reading).
+  const double read = source_->progress();  // negative: not known
+  if (read < 0) return -1;
+  return std::min(1.0, read * static_cast<double>(sum_.scans + sum_.scans_before) /
+                           static_cast<double>(std::max<std::size_t>(1, scans_read_)));
+}
+
+void MapCleanRun::finish() {
+  sum_.voted = cleaner_.finish();
+  sum_.seen_through = cleaner_.moveSeenThrough();
+  static_points_ = cleaner_.staticMap().points();
+  const std::vector<MapPoint> dynamic_points = cleaner_.dynamicMap().points();
+  sum_.points_static = cleaner_.staticMap().pointsInserted();
+  sum_.points_dynamic = cleaner_.dynamicMap().pointsInserted();
+  sum_.map_static = static_points_.size();
+  sum_.map_dynamic = dynamic_points.size();
+  sum_.backfilled = cleaner_.backfilledPixels();
+  sum_.confirmed_tracks = cleaner_.confirmedTracks().size();
+  sum_.files = writeMaps(o_.out_dir, o_.formats, static_points_, dynamic_points, o_.png_resolution);
+  tum_->close();
+  sum_.files.push_back(out_ + "poses.tum");
+  if (simplemap_) {
+    simplemap_->close();
+    sum_.keyframes = simplemap_->keyframes();
+    sum_.files.push_back(out_ + "cleaned.simplemap");
+  }
+  if (exporter_) {
+    exporter_->close();
+    sum_.exported_frames = exporter_->frames();
+    sum_.exported_points = exporter_->points();
+    sum_.files.push_back(o_.export_kth);
+  }
+  if (overlap_tum_) {
+    overlap_tum_->close();
+    sum_.files.push_back(out_ + "overlap.tum");
+  }
+}
+
+void MapCleanRun::score() {
+  source_->rewind();
+  sum_.scores = scoreMap(static_points_, o_.tolerance, source_.get(), gt_labels_, o_.ground_truth,
+                         mapped_poses_, o_.clean.min_range, progress_);
+}
+
+void MapCleanRun::writeChunkInfo() {
+  ChunkInfo info;
+  info.input = o_.input;
+  info.first_scan_ns = first_scan_;
+  info.range = *o_.chunk;
+  info.scans = sum_.scans;
+  info.scans_before = sum_.scans_before;
+  info.scans_after = sum_.scans_after;
+  info.reached_end = reached_end_;
+  info.last_scan = 1e-9 * static_cast<double>(last_mapped_ - first_scan_);
+  info.voxel_size = o_.clean.voxel_size;
+  info.dynamic_vote = o_.clean.dynamic_vote;
+  info.min_range = o_.clean.min_range;
+  info.poses = sum_.poses;
+  info.formats = o_.formats.toString();
+  info.write(sum_.files.emplace_back(out_ + "chunk.ini"));
+}
+
+}  // namespace
+
+MapCleanSummary runMapClean(const MapCleanOptions& o, const MapCleanProgress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  MapCleanRun run(o, progress);
+  run.detectAndMap();                        // detect, map (with the back-fill), count the views
+  run.finish();                              // vote, seen through; the maps written
+  if (!o.ground_truth.empty()) run.score();  // metrics: the final static map against the truth
+  if (o.chunk) run.writeChunkInfo();
+  MapCleanSummary& sum = run.summary();
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sum;
 }
