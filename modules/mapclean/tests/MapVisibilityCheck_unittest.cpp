@@ -188,3 +188,21 @@ TEST(MapCleaner, ScansOlderThanThePastWindowAreForgotten) {
   none.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
   EXPECT_EQ(none.moveSeenThrough(), 0u);
 }
+
+TEST(MapCleaner, AScanLookedAtCountsItsViewsButMapsNothing) {
+  // A chunk's overlap (look): before its range, the views of the past; after it, later views.
+  mc::MapCleaner cleaner = streamingCleaner();
+  cleaner.look(at(frameAt(10.f), 0.0), kOrigin);  // before: the place seen empty
+  cleaner.look(at(frameAt(10.f), 1.0), kOrigin);
+  EXPECT_TRUE(cleaner.staticMap().empty());  // looked at, not mapped
+  cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
+  EXPECT_EQ(cleaner.staticMap().size(), 1u);
+  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);  // the two looks before count as past views
+
+  mc::MapCleaner later = streamingCleaner();
+  later.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 0.0), kAllStatic, kOrigin);
+  later.look(at(frameAt(10.f), 1.0), kOrigin);  // after: seen through twice
+  later.look(at(frameAt(10.f), 2.0), kOrigin);
+  EXPECT_EQ(later.staticMap().size(), 1u);
+  EXPECT_EQ(later.moveSeenThrough(), 1u);
+}
