@@ -6,11 +6,11 @@
 // that person (IoU >= 0.8 per sweep) and has dynobj-eval read the file.
 // Usage: node browser_test.js --bin <build/apps> --sample <rawlogs/hall-small/hall-small>
 //          --work <dir> --object <gt id> --sweep <first sweep> [--screenshots <dir>]
+//          [--chromium <browser binary, default chromium>]
 'use strict';
 const {spawn, spawnSync} = require('child_process');
 const fs = require('fs');
 const path = require('path');
-const os = require('os');
 
 const args = {};
 for (let i = 2; i < process.argv.length; i += 2) args[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
@@ -22,9 +22,36 @@ fs.mkdirSync(args.work, {recursive: true});
 fs.mkdirSync(shots, {recursive: true});
 const base = path.join(args.work, 'hall-small.person');
 const children = [];
+// Chromium runs in a process group of its own: its zygote and renderer processes outlive the
+// browser process for a moment and write into the profile, so stopBrowser() kills the whole group
+// and waits until none of it runs before it removes the profile (at the end and on failure).
+const browser = {pgid: 0, profile: null};
+function browserRunning() {
+  for (const pid of fs.readdirSync('/proc').filter((p) => /^\d+$/.test(p))) {
+    let stat;
+    try { stat = fs.readFileSync(`/proc/${pid}/stat`, 'utf8'); } catch (e) { continue; }  // gone
+    const [state, , pgrp] = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+    if (+pgrp === browser.pgid && state !== 'Z') return true;
+  }
+  return false;
+}
+function stopBrowser() {
+  if (browser.pgid) {
+    try { process.kill(-browser.pgid, 'SIGKILL'); } catch (e) { /* gone */ }
+    const t0 = Date.now(), tick = new Int32Array(new SharedArrayBuffer(4));
+    while (browserRunning()) {
+      if (Date.now() - t0 > 10000) { console.error(`Chromium (process group ${browser.pgid}) still runs 10 s after SIGKILL`); break; }
+      Atomics.wait(tick, 0, 0, 20);
+    }
+    browser.pgid = 0;
+  }
+  if (browser.profile) fs.rmSync(browser.profile, {recursive: true, force: true});
+  browser.profile = null;
+}
 function fail(msg) {
   console.error('FAIL: ' + msg);
   for (const c of children) try { c.kill('SIGKILL'); } catch (e) { /* gone */ }
+  stopBrowser();
   process.exit(1);
 }
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -96,14 +123,39 @@ async function main() {
   console.log('dynobj-label serves ' + url);
 
   // ---- Chromium ----
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'dynobj-label-chromium-'));
-  const chrome = spawn(args.chromium || 'chromium',
+  // Under /tmp, not TMPDIR (build/tests/tmp in scripts/test.sh): Chromium puts its SingletonSocket
+  // in <TMPDIR>/org.chromium.Chromium.XXXXXX/, and a Unix socket path has at most 107 characters,
+  // which a checkout a little deeper than usual exceeds (Chromium then exits at once). The name
+  // starts with dynobj so that scripts/test.sh reports it if it is left behind.
+  browser.profile = fs.mkdtempSync('/tmp/dynobj-chromium-');
+  const chromium = args.chromium || 'chromium';
+  const chrome = spawn(chromium,
     ['--headless', '--no-sandbox', '--disable-gpu', '--remote-debugging-pipe', '--no-first-run',
      '--disable-background-networking', '--disable-component-update', '--disable-sync',
-     '--user-data-dir=' + profile, 'about:blank'],
+     '--user-data-dir=' + browser.profile, 'about:blank'],
     // Chromium's own temporary files go into the profile, removed at the end.
-    {stdio: ['ignore', 'ignore', 'ignore', 'pipe', 'pipe'], env: {...process.env, TMPDIR: profile}});
-  children.push(chrome);
+    {stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'], env: {...process.env, TMPDIR: browser.profile},
+     detached: true});
+  browser.pgid = chrome.pid || 0;
+  // Chromium gone before the test is done (it does not start, crashes, is killed): fail at once,
+  // with the end of its stderr, rather than wait for DevTools answers that never come.
+  let chromeErr = '';
+  chrome.stderr.on('data', (d) => { chromeErr = (chromeErr + d).slice(-8000); });
+  const chromeGone = (what) => {
+    const report = () => {
+      const tail = chromeErr.trim().split('\n').slice(-8).join('\n');
+      fail(`${chromium} ${what} before the test was done` + (tail ? '; the end of its output:\n' + tail : ' (no output)'));
+    };
+    if (chrome.stderr.readableEnded) return report();
+    chrome.stderr.once('end', report);  // all of its output, or what came within 1 s
+    setTimeout(report, 1000);
+  };
+  chrome.on('error', (e) => fail(`cannot start ${chromium}: ${e.message}`));
+  const onChromeExit = (code, signal) => chromeGone(signal ? `was killed by ${signal}` : `exited with ${code}`);
+  chrome.on('exit', onChromeExit);
+  // A broken pipe means Chromium is exiting: its exit status, reported above, says more.
+  for (const fd of [3, 4])
+    chrome.stdio[fd].on('error', (e) => setTimeout(() => chromeGone(`closed its DevTools pipe (${e.message})`), 2000));
   const cdp = new Cdp(chrome);
   const {targetInfos} = await cdp.send('Target.getTargets');
   const page = targetInfos.find((t) => t.type === 'page');
@@ -191,11 +243,11 @@ async function main() {
   await waitFor(`document.getElementById('notice').textContent.startsWith('saved')`, 'the save');
   await idle();
   await screenshot('label-saved.png');
-  chrome.kill('SIGTERM');
+  chrome.removeListener('exit', onChromeExit);
+  stopBrowser();
   app.kill('SIGINT');
   const code = await new Promise((r) => app.on('exit', r));
   if (code !== 0) fail('dynobj-label exited with ' + code);
-  fs.rmSync(profile, {recursive: true, force: true});
 
   // Started again on the same output, it resumes the session.
   const again = spawn(path.join(args.bin, 'dynobj-label'), ['-i', args.sample + '.rawlog', '-o', base, '--port', '0'],
