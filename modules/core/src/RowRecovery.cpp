@@ -154,6 +154,257 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
   return lasers;
 }
 
+/// Rule 3: raw firing order. The points come in the order the lasers fired: one cycle of every
+/// laser per firing (less the no-returns), cycle after cycle, about one revolution per sweep (a
+/// sweep may hold more: the repeated sector is kept and reported). The lasers are found from the
+/// data alone:
+///  a. beams: the peaks of the elevation histogram of the far points (>= kFarRange, where a laser's
+///     vertical offset tilts its points least), 0.01-degree bins smoothed over +-0.03 degrees;
+///  b. the firing cycle: each beam's most frequent successor among consecutive far points; the
+///     successors must form one cycle through the beams (a few rare, spurious peaks are dropped);
+///  c. each point's laser: the cycle position after the previous point's (up to kMaxSkip
+///     no-returns in between) whose beam elevation, tilted by the laser's vertical offset at the
+///     point's distance, is nearest; then each laser's elevation and vertical offset are fitted
+///     to its points (least squares of z = h tan(elevation) + offset) and (c) runs again.
+/// 0 lasers when any step fails (under 4 beams, beams off the cycle, under half of the points
+/// coming right after the previous point's laser). `repeated` receives the points in a sector
+/// the sweep scanned twice.
+int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser,
+                      std::size_t& repeated) {
+  constexpr double kBin = 0.01 * M_PI / 180.0, kSigma = 3.0;  // bins
+  constexpr double kMinSeparation = 0.07 * M_PI / 180.0;
+  constexpr int kMaxSkip = 12;
+  constexpr double kNear = 2.0;  // [m] nearer points (the vehicle, a laser's offset) are not used
+  const std::size_t n = c.size();
+  std::vector<std::size_t> pts;  // usable points, in stored order
+  std::vector<double> elev, hor;
+  pts.reserve(n);
+  double total = 0, prev = 0;
+  for (std::size_t i = 0; i < n; i++) {
+    if (!usable(c, i)) continue;
+    const double az = std::atan2(c.y[i], c.x[i]);
+    if (!pts.empty()) {
+      double d = az - prev;
+      if (d > M_PI) d -= kTwoPi;
+      if (d < -M_PI) d += kTwoPi;
+      total += d;
+    }
+    prev = az;
+    pts.push_back(i);
+    hor.push_back(std::hypot(c.x[i], c.y[i]));
+    elev.push_back(std::atan2(c.z[i], hor.back()));
+  }
+  const double revolutions = std::abs(total) / kTwoPi;
+  if (pts.size() < 256 || revolutions < 0.25 || revolutions > 2.5) return 0;
+
+  // a. Beams from the far points' elevation histogram.
+  constexpr int kBins = static_cast<int>(M_PI / kBin) + 1;
+  std::vector<double> hist(static_cast<std::size_t>(kBins), 0.0);
+  auto binOf = [&](double e) { return static_cast<int>((e + M_PI / 2) / kBin); };
+  for (std::size_t k = 0; k < pts.size(); k++)
+    if (hor[k] >= kNear) {
+      const int b = binOf(elev[k]);
+      if (b >= 0 && b < kBins) hist[static_cast<std::size_t>(b)] += 1.0;
+    }
+  const int half = static_cast<int>(3 * kSigma);
+  std::vector<double> kernel(static_cast<std::size_t>(2 * half + 1));
+  for (int k = -half; k <= half; k++)
+    kernel[static_cast<std::size_t>(k + half)] = std::exp(-0.5 * k * k / (kSigma * kSigma));
+  std::vector<double> smooth(hist.size(), 0.0);
+  for (int b = half; b + half < kBins; b++)
+    if (hist[static_cast<std::size_t>(b)] > 0)
+      for (int k = -half; k <= half; k++)
+        smooth[static_cast<std::size_t>(b + k)] +=
+            hist[static_cast<std::size_t>(b)] * kernel[static_cast<std::size_t>(k + half)];
+  std::vector<std::pair<double, int>> peaks;  // (height, bin)
+  for (int b = 1; b + 1 < kBins; b++) {
+    const double v = smooth[static_cast<std::size_t>(b)];
+    if (v >= 3 && v > smooth[static_cast<std::size_t>(b - 1)] &&
+        v >= smooth[static_cast<std::size_t>(b + 1)])
+      peaks.emplace_back(v, b);
+  }
+  std::sort(peaks.begin(), peaks.end(), std::greater<>());
+  std::vector<double> beam;  // elevation [rad] per beam
+  for (const auto& [v, b] : peaks) {
+    const double e = (b + 0.5) * kBin - M_PI / 2;
+    if (std::all_of(beam.begin(), beam.end(),
+                    [&](double t) { return std::abs(t - e) >= kMinSeparation; }))
+      beam.push_back(e);
+  }
+  if (beam.size() < 4 || beam.size() > 1024) return 0;
+  std::sort(beam.begin(), beam.end());
+  auto nearestBeam = [&](double e) {
+    const auto it = std::lower_bound(beam.begin(), beam.end(), e);
+    std::size_t j = static_cast<std::size_t>(it - beam.begin());
+    if (j == beam.size() || (j > 0 && e - beam[j - 1] < beam[j] - e)) j--;
+    return j;
+  };
+
+  // b. The firing cycle: each beam's most frequent successor among consecutive far points.
+  const std::size_t nb = beam.size();
+  std::vector<std::vector<std::size_t>> next(nb, std::vector<std::size_t>(nb, 0));
+  std::vector<std::size_t> seen(nb, 0);
+  for (std::size_t k = 0; k + 1 < pts.size(); k++)
+    if (hor[k] >= kNear && hor[k + 1] >= kNear) {
+      const std::size_t a = nearestBeam(elev[k]), b = nearestBeam(elev[k + 1]);
+      next[a][b]++;
+      seen[a]++;
+    }
+  std::vector<int> succ(nb, -1);
+  for (std::size_t a = 0; a < nb; a++)
+    if (seen[a] > 0)
+      succ[a] =
+          static_cast<int>(std::max_element(next[a].begin(), next[a].end()) - next[a].begin());
+  const auto start =
+      static_cast<std::size_t>(std::max_element(seen.begin(), seen.end()) - seen.begin());
+  // Follow the successors from the most seen beam until one repeats: the loop is the cycle of
+  // the beams that (nearly) always return. A beam that often has no return (e.g. the top one,
+  // under an open sky) is skipped by its predecessor's most frequent successor: it goes in after
+  // the cycle's beam it follows most often.
+  std::vector<int> cycle;  // beams in firing order
+  std::vector<int> visit(nb, -1);
+  for (int a = static_cast<int>(start); a >= 0; a = succ[static_cast<std::size_t>(a)]) {
+    if (visit[static_cast<std::size_t>(a)] >= 0) {
+      cycle.erase(cycle.begin(), cycle.begin() + visit[static_cast<std::size_t>(a)]);
+      break;
+    }
+    visit[static_cast<std::size_t>(a)] = static_cast<int>(cycle.size());
+    cycle.push_back(a);
+  }
+  if (cycle.size() < 2 ||
+      visit[static_cast<std::size_t>(succ[static_cast<std::size_t>(cycle.back())])] < 0)
+    return 0;
+  std::vector<char> in_cycle(nb, 0);
+  for (int a : cycle) in_cycle[static_cast<std::size_t>(a)] = 1;
+  std::vector<std::size_t> rest;
+  for (std::size_t x = 0; x < nb; x++)
+    if (!in_cycle[x]) rest.push_back(x);
+  std::sort(rest.begin(), rest.end(),
+            [&](std::size_t a, std::size_t b) { return seen[a] > seen[b]; });
+  for (std::size_t x : rest) {
+    std::size_t best = 0, after = 0;
+    for (std::size_t k = 0; k < cycle.size(); k++) {
+      const std::size_t v = next[static_cast<std::size_t>(cycle[k])][x];
+      if (v > best) {
+        best = v;
+        after = k;
+      }
+    }
+    if (best == 0) continue;
+    cycle.insert(cycle.begin() + static_cast<std::ptrdiff_t>(after + 1), static_cast<int>(x));
+    in_cycle[x] = 1;
+  }
+  if (cycle.size() < 4) return 0;
+  std::size_t far_total = 0, far_outside = 0;
+  for (std::size_t a = 0; a < nb; a++) {
+    far_total += seen[a];
+    if (!in_cycle[a]) far_outside += seen[a];
+  }
+  if (far_outside > far_total / 50) return 0;  // beams off the cycle: not one firing pattern
+
+  // c. Each point's cycle position, twice: with the histogram's beams, then with each laser's
+  // fitted elevation and vertical offset.
+  const int lasers = static_cast<int>(cycle.size());
+  std::vector<double> tan_el(cycle.size()), offset(cycle.size(), 0.0);
+  for (std::size_t k = 0; k < cycle.size(); k++)
+    tan_el[k] = std::tan(beam[static_cast<std::size_t>(cycle[k])]);
+  std::vector<int> pos(pts.size(), 0);
+  std::size_t following = 0, far_pairs = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    int p = -1;
+    following = far_pairs = 0;
+    for (std::size_t k = 0; k < pts.size(); k++) {
+      const double z = c.z[pts[k]], h = hor[k];
+      auto miss = [&](int q) {
+        const auto qi = static_cast<std::size_t>(q);
+        return std::abs(z - (h * tan_el[qi] + offset[qi])) / std::max(h, 1.0);
+      };
+      int best = -1;
+      double best_miss = 0;
+      if (p >= 0)
+        for (int s = 1; s <= kMaxSkip + 1 && s <= lasers; s++) {
+          const int q = (p + s) % lasers;
+          const double m = miss(q);
+          if (best < 0 || m < best_miss) {
+            best = q;
+            best_miss = m;
+          }
+        }
+      // Re-synchronize when no position after the previous one fits (a long gap of no-returns).
+      const double tolerance = 0.5 * kMinSeparation + (pass == 0 ? 0.3 : 0.05) / std::max(h, 1.0);
+      if (best < 0 || best_miss > tolerance)
+        for (int q = 0; q < lasers; q++) {
+          const double m = miss(q);
+          if (best < 0 || m < best_miss) {
+            best = q;
+            best_miss = m;
+          }
+        }
+      if (k > 0 && h >= kNear && hor[k - 1] >= kNear) {
+        far_pairs++;
+        if (p >= 0 && (best - p + lasers) % lasers == 1) following++;
+      }
+      pos[k] = p = best;
+    }
+    if (pass == 1) break;
+    // Fit each laser's elevation and vertical offset (z = h t + v) to its points; the offset only
+    // where the distances spread enough to tell it from the elevation.
+    for (int q = 0; q < lasers; q++) {
+      double s1 = 0, sh = 0, sz = 0, shh = 0, shz = 0, far_t = 0, far_n = 0;
+      for (std::size_t k = 0; k < pts.size(); k++) {
+        if (pos[k] != q) continue;
+        const double h = hor[k], z = c.z[pts[k]];
+        s1 += 1;
+        sh += h;
+        sz += z;
+        shh += h * h;
+        shz += h * z;
+        if (h >= kFarRange) {
+          far_t += z / h;
+          far_n += 1;
+        }
+      }
+      const auto qi = static_cast<std::size_t>(q);
+      const double var = s1 > 0 ? shh / s1 - (sh / s1) * (sh / s1) : 0.0;
+      if (s1 >= 16 && var >= 4.0) {  // distances spread over >= 2 m (standard deviation)
+        tan_el[qi] = (s1 * shz - sh * sz) / (s1 * shh - sh * sh);
+        offset[qi] = (sz - tan_el[qi] * sh) / s1;
+      } else if (far_n >= 8) {
+        tan_el[qi] = far_t / far_n;
+      }
+    }
+  }
+  // In a cycle most points follow the previous one's laser directly; in any other order about
+  // one in `lasers` does.
+  if (static_cast<double>(following) < std::max(0.5, 3.0 / lasers) * static_cast<double>(far_pairs))
+    return 0;
+  // Lasers in elevation order are renumbered by rowsByElevation later; here: cycle position.
+  laser.assign(n, 0);
+  for (std::size_t k = 0; k < pts.size(); k++) laser[pts[k]] = static_cast<std::uint16_t>(pos[k]);
+  // Unusable points sit with the laser before them (they are not projected).
+  for (std::size_t i = 1; i < n; i++)
+    if (!usable(c, i)) laser[i] = laser[i - 1];
+  // The repeated sector: each laser's points after it has turned a full revolution.
+  repeated = 0;
+  std::vector<double> first_az(cycle.size(), std::nan("")), turned(cycle.size(), 0.0),
+      last_az(cycle.size(), 0.0);
+  for (std::size_t k = 0; k < pts.size(); k++) {
+    const auto q = static_cast<std::size_t>(pos[k]);
+    const double az = std::atan2(c.y[pts[k]], c.x[pts[k]]);
+    if (std::isnan(first_az[q])) {
+      first_az[q] = last_az[q] = az;
+      continue;
+    }
+    double d = az - last_az[q];
+    if (d > M_PI) d -= kTwoPi;
+    if (d < -M_PI) d += kTwoPi;
+    turned[q] += d;
+    last_az[q] = az;
+    if (std::abs(turned[q]) >= kTwoPi) repeated++;
+  }
+  return lasers;
+}
+
 /// Rule 3: `rows` beam elevations from the peaks of the far points' elevation histogram, or an
 /// empty table when it does not show `rows` separate peaks.
 std::vector<double> histogramTable(const PointCloud& c, int rows) {
@@ -221,6 +472,8 @@ const char* toString(RowSource s) {
       return "ring field";
     case RowSource::FiringOrder:
       return "firing order";
+    case RowSource::FiringCycle:
+      return "firing cycle";
     case RowSource::EstimatedTable:
       return "estimated beam table";
     case RowSource::NominalTable:
@@ -263,6 +516,10 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   } else {
     lasers = firingOrderLasers(cloud, laser);
     out.source = RowSource::FiringOrder;
+    if (lasers == 0) {
+      lasers = firingCycleLasers(cloud, laser, out.repeated);
+      out.source = RowSource::FiringCycle;
+    }
   }
   out.lasers = std::max(lasers, 0);
   if (lasers > 0 && hint && lasers < hint->rows) {

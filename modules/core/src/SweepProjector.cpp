@@ -32,7 +32,7 @@ ProjectionStats SweepProjector::project(PointCloud& cloud, LidarFrame& frame) {
   if (scale_ == 0) scale_ = intensityScaleOf(cloud);  // once, so every sweep has the same scale
   for (float& v : cloud.intensity) v = static_cast<float>(v * scale_);
   const ProjectionStats stats = projectUnordered(cloud, hint_, frame, &source_, &lasers_);
-  if (!hint_ && (source_ == RowSource::RingField || source_ == RowSource::FiringOrder))
+  if (!hint_ && rowsFromData(source_))
     hint_ = frame.sensor;  // later sweeps keep the first complete sweep's rows
   return stats;
 }

@@ -175,3 +175,78 @@ TEST(RowRecovery, OrganizedModelFitsALineWhenTheRowsDoNotDescend) {
   EXPECT_NEAR(up.elevation_top / kDeg, 2.5, 1e-12);
   EXPECT_NEAR(up.elevation_bottom / kDeg, -2.5, 1e-12);
 }
+
+namespace {
+
+/// Each laser id's true row: its rank by elevation, top down.
+std::vector<int> trueRows(const dynobj::test::FiringPattern& p) {
+  std::vector<int> ids(p.elevation_deg.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) {
+    return p.elevation_deg[static_cast<std::size_t>(a)] >
+           p.elevation_deg[static_cast<std::size_t>(b)];
+  });
+  std::vector<int> row(ids.size());
+  for (std::size_t r = 0; r < ids.size(); r++)
+    row[static_cast<std::size_t>(ids[r])] = static_cast<int>(r);
+  return row;
+}
+
+}  // namespace
+
+TEST(RowRecovery, RawFiringOrderGivesEveryRowWithoutAModel) {
+  // VLP-16 and HDL-32E clouds in packet order (interleaved lasers, 2 % no-returns, sky above the
+  // walls): every point on its true row, the table measured, one column per firing; a sweep of
+  // 394 degrees keeps its repeated sector and counts it.
+  for (const auto& p : {dynobj::test::vlp16Pattern(), dynobj::test::hdl32Pattern()}) {
+    for (double sweep : {360.0, 394.0}) {
+      SCOPED_TRACE(p.name + " " + std::to_string(sweep));
+      std::vector<int> laser;
+      std::vector<double> turn;
+      PointCloud c = dynobj::test::rawFiringSweep(p, laser, sweep, 30.0, 1, &turn);
+      const auto truth = trueRows(p);
+      const auto rec = recoverRows(c, std::nullopt);
+      EXPECT_EQ(rec.source, RowSource::FiringCycle);
+      ASSERT_EQ(rec.sensor.rows, static_cast<int>(p.elevation_deg.size()));
+      EXPECT_EQ(rec.sensor.cols, p.firings);
+      ASSERT_TRUE(c.isOrganized());
+      std::size_t twice = 0;
+      for (std::size_t i = 0; i < c.size(); i++) {
+        ASSERT_EQ(c.row[i], truth[static_cast<std::size_t>(laser[i])]) << "point " << i;
+        if (turn[i] >= 360.0) twice++;
+      }
+      EXPECT_NEAR(static_cast<double>(rec.repeated), static_cast<double>(twice), 0.01 * c.size());
+      if (sweep == 360.0) {
+        EXPECT_EQ(rec.repeated, 0u);
+      }
+      const auto table = rec.sensor.rowElevations();
+      std::vector<double> want = p.elevation_deg;
+      std::sort(want.begin(), want.end(), std::greater<>());
+      for (std::size_t r = 0; r < want.size(); r++) EXPECT_NEAR(table[r] / kDeg, want[r], 0.05);
+    }
+  }
+}
+
+TEST(RowRecovery, RawFiringOrderTheRuleCannotSortOutIsRefusedNotGuessed) {
+  // Lasers 0.11 degrees apart (VLS-128-like) or with vertical offsets of 0.1-0.25 m (HDL-64E-like)
+  // blur the beams' elevations into each other: no firing cycle is found, and without a sensor
+  // model that is an error naming the cause.
+  for (const auto& p : {dynobj::test::hdl64Pattern(), dynobj::test::vls128Pattern()}) {
+    SCOPED_TRACE(p.name);
+    std::vector<int> laser;
+    PointCloud c = dynobj::test::rawFiringSweep(p, laser, 394.0);
+    try {
+      const auto rec = recoverRows(c, std::nullopt);
+      ADD_FAILURE() << "rows from " << toString(rec.source);
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot be recovered"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(RowRecovery, ShuffledRawFiringOrderIsNoFiringCycle) {
+  std::vector<int> laser;
+  PointCloud c = dynobj::test::rawFiringSweep(dynobj::test::vlp16Pattern(), laser);
+  dynobj::test::shuffle(c, laser);
+  EXPECT_THROW(recoverRows(c, std::nullopt), std::invalid_argument);
+}

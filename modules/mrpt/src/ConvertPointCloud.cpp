@@ -34,8 +34,7 @@ core::ProjectionStats convertPointCloud(const mrpt::obs::CObservationPointCloud&
   try {
     core::RowSource source = core::RowSource::NominalTable;
     const core::ProjectionStats st = core::projectUnordered(cloud, hint, frame, &source);
-    if (!hint && (source == core::RowSource::RingField || source == core::RowSource::FiringOrder))
-      learned.emplace(o.sensorLabel, frame.sensor);
+    if (!hint && core::rowsFromData(source)) learned.emplace(o.sensorLabel, frame.sensor);
     return st;
   } catch (const std::invalid_argument& e) {
     fail(o, std::string(e.what()) +

@@ -9,9 +9,16 @@
 //  2. firing order  — the cloud is stored laser by laser, each laser one revolution (how KITTI
 //                     and most HDL recorders store a sweep): a new row starts each time the
 //                     azimuth has turned a full revolution since the sweep's first point;
-//  3. estimated table — the elevation histogram of the sweep's far points has one peak per beam;
-//  4. nominal table — the sensor model as given (the last resort).
-// Rules 1-3 return a sensor model whose beam table is the measured elevation of each row.
+//  3. firing cycle  — the cloud is in the order the lasers fired (raw packet order: every laser
+//                     once per firing, cycle after cycle, no-returns left out): the beams are the
+//                     peaks of the far points' elevations, the cycle their most frequent order,
+//                     each point's laser the cycle position after the previous point's that fits
+//                     its elevation (with each laser's fitted vertical offset); a sweep holding
+//                     more than one revolution keeps the repeated sector (RecoveredRows::repeated);
+//  4. estimated table — the elevation histogram of the sweep's far points has one peak per beam;
+//  5. nominal table — the sensor model as given (the last resort).
+// Rules 1-4 return a sensor model whose beam table is the measured elevation of each row; rules
+// 1-3 need no sensor model.
 #pragma once
 
 #include <optional>
@@ -24,20 +31,26 @@
 
 namespace dynobj::core {
 
-enum class RowSource { RingField, FiringOrder, EstimatedTable, NominalTable };
+enum class RowSource { RingField, FiringOrder, FiringCycle, EstimatedTable, NominalTable };
 const char* toString(RowSource s);
+/// True for the rules that find the sensor's rows in the data (1-3): later sweeps of the same
+/// sensor may take the model they give as their hint.
+inline bool rowsFromData(RowSource s) {
+  return s == RowSource::RingField || s == RowSource::FiringOrder || s == RowSource::FiringCycle;
+}
 
 struct RecoveredRows {
   RowSource source = RowSource::NominalTable;
-  SensorModel sensor;  ///< the rows found (beam_elevations = measured elevation per row)
-  int lasers = 0;      ///< lasers the data shows (rules 1-2: ring ids, firing order); 0 = unknown
+  SensorModel sensor;        ///< the rows found (beam_elevations = measured elevation per row)
+  int lasers = 0;            ///< lasers the data shows (rules 1-3); 0 = unknown
+  std::size_t repeated = 0;  ///< rule 3: points in a sector the sweep scanned a second time
 };
 
 /// Recovers the rows of `cloud` (see the file comment). `hint` gives what is known of the sensor:
 /// its rows (a recovered row count must equal it), columns, range limits and rate; without a
 /// hint the row count comes from the data and the columns from the azimuth step. Fills
-/// cloud.row / cloud.col for rules 1-2 (the cloud becomes organized); leaves them empty for
-/// rules 3-4 (project with Eq. (1) and the returned model). Throws std::invalid_argument when no
+/// cloud.row / cloud.col for rules 1-3 (the cloud becomes organized); leaves them empty for
+/// rules 4-5 (project with Eq. (1) and the returned model). Throws std::invalid_argument when no
 /// rule applies and there is no hint.
 RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint);
 
