@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -154,26 +155,209 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
   return lasers;
 }
 
-/// Rule 3: raw firing order. The points come in the order the lasers fired: one cycle of every
-/// laser per firing (less the no-returns), cycle after cycle, about one revolution per sweep (a
-/// sweep may hold more: the repeated sector is kept and reported). The lasers are found from the
-/// data alone:
-///  a. beams: the peaks of the elevation histogram of the far points (>= kFarRange, where a laser's
-///     vertical offset tilts its points least), 0.01-degree bins smoothed over +-0.03 degrees;
-///  b. the firing cycle: each beam's most frequent successor among consecutive far points; the
-///     successors must form one cycle through the beams (a few rare, spurious peaks are dropped);
-///  c. each point's laser: the cycle position after the previous point's (up to kMaxSkip
-///     no-returns in between) whose beam elevation, tilted by the laser's vertical offset at the
-///     point's distance, is nearest; then each laser's elevation and vertical offset are fitted
-///     to its points (least squares of z = h tan(elevation) + offset) and (c) runs again.
-/// 0 lasers when any step fails (under 4 beams, beams off the cycle, under half of the points
-/// coming right after the previous point's laser). `repeated` receives the points in a sector
-/// the sweep scanned twice.
-int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser,
-                      std::size_t& repeated) {
+/// The points of each laser after it has turned a full revolution (a sweep of more than 360°).
+std::size_t repeatedPoints(const PointCloud& c, const std::vector<std::uint16_t>& laser,
+                           int lasers) {
+  std::size_t repeated = 0;
+  const auto nl = static_cast<std::size_t>(lasers);
+  std::vector<double> turned(nl, 0.0), last_az(nl, std::nan(""));
+  for (std::size_t i = 0; i < c.size(); i++) {
+    if (!usable(c, i) || laser[i] >= nl) continue;
+    const auto q = laser[i];
+    const double az = std::atan2(c.y[i], c.x[i]);
+    if (!std::isnan(last_az[q])) {
+      double d = az - last_az[q];
+      if (d > M_PI) d -= kTwoPi;
+      if (d < -M_PI) d += kTwoPi;
+      turned[q] += d;
+    }
+    last_az[q] = az;
+    if (std::abs(turned[q]) >= kTwoPi) repeated++;
+  }
+  return repeated;
+}
+
+/// Rule 3, step b: the anchor is the isolated beam (no other within kIsolated) with the most
+/// complete cycles among the 8 most populated ones whose returns step one firing in azimuth (the
+/// median step, under 2 degrees); the period is the largest gap between its returns one firing
+/// apart seen at least 3 times. Each cycle position's elevation and vertical offset: least squares
+/// of z = h tan(elevation) + offset over the complete cycles (the elevation alone where the
+/// distances spread less than 2 m). The points between consecutive anchor returns n firings
+/// apart take positions 1 .. n x period - 1 in increasing order, with the fewest elevation
+/// misfits (dynamic programming). Fills `laser` (cycle position) and `elevations`.
+int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
+                       const std::vector<double>& elev, const std::vector<std::size_t>& pts,
+                       std::vector<std::uint16_t>& laser, std::vector<double>& elevations) {
+  constexpr double kIsolated = 0.25 * M_PI / 180.0;
+  const std::size_t n = c.size();
+  // The anchor: the most populated beam with no other beam within kIsolated.
+  std::vector<std::size_t> count(beam.size(), 0);
+  for (std::size_t k = 0; k < pts.size(); k++) {
+    const auto it = std::lower_bound(beam.begin(), beam.end(), elev[k]);
+    std::size_t j = static_cast<std::size_t>(it - beam.begin());
+    if (j == beam.size() || (j > 0 && elev[k] - beam[j - 1] < beam[j] - elev[k])) j--;
+    if (std::abs(elev[k] - beam[j]) < 0.3 * kIsolated) count[j]++;
+  }
+  std::vector<std::size_t> candidates;  // isolated beams, most populated first
+  for (std::size_t j = 0; j < beam.size(); j++) {
+    const bool lo = j == 0 || beam[j] - beam[j - 1] >= kIsolated;
+    const bool hi = j + 1 == beam.size() || beam[j + 1] - beam[j] >= kIsolated;
+    if (lo && hi) candidates.push_back(j);
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [&](std::size_t a, std::size_t b) { return count[a] > count[b]; });
+  if (candidates.size() > 8) candidates.resize(8);
+  // Each candidate: its returns, the azimuth step of one firing, the period; the candidate with
+  // the most complete cycles is the anchor.
+  std::vector<std::size_t> occ;  // stored indices of the anchor's returns
+  std::vector<double> steps;     // azimuth from each return to the next
+  double step = 0;
+  std::size_t period = 0, complete = 0;
+  for (std::size_t cand : candidates) {
+    const double ae = beam[cand];
+    std::vector<std::size_t> o;
+    std::vector<double> az;
+    for (std::size_t k = 0; k < pts.size(); k++)
+      if (std::abs(elev[k] - ae) < 0.3 * kIsolated) {
+        o.push_back(pts[k]);
+        az.push_back(std::atan2(c.y[pts[k]], c.x[pts[k]]));
+      }
+    if (o.size() < 64) continue;
+    std::vector<double> st;
+    for (std::size_t k = 1; k < o.size(); k++) {
+      double d = az[k] - az[k - 1];
+      if (d > M_PI) d -= kTwoPi;
+      if (d < -M_PI) d += kTwoPi;
+      st.push_back(std::abs(d));
+    }
+    std::vector<double> sorted = st;
+    const double sp = median(sorted);
+    if (!(sp > 0) || sp > 2.0 * M_PI / 180.0) continue;  // not one laser: returns all around
+    std::map<std::size_t, int> gaps;  // gap (stored points) of one-firing intervals -> count
+    for (std::size_t k = 1; k < o.size(); k++)
+      if (std::abs(st[k - 1] - sp) < 0.4 * sp) gaps[o[k] - o[k - 1]]++;
+    std::size_t per = 0;
+    for (auto it = gaps.rbegin(); it != gaps.rend(); ++it)
+      if (it->second >= 3) {
+        per = it->first;
+        break;
+      }
+    if (per < 4 || per > 1024) continue;
+    const auto full = static_cast<std::size_t>(gaps[per]);
+    if (full > complete) {
+      complete = full;
+      period = per;
+      occ = std::move(o);
+      steps = std::move(st);
+      step = sp;
+    }
+  }
+  if (period == 0 || complete < 8) return 0;
+  const int P = static_cast<int>(period);
+  // Each position's elevation and vertical offset from the complete cycles.
+  std::vector<double> s1(period, 0), sh(period, 0), sz(period, 0), shh(period, 0), shz(period, 0);
+  for (std::size_t k = 1; k < occ.size(); k++) {
+    if (occ[k] - occ[k - 1] != period || std::abs(steps[k - 1] - step) >= 0.4 * step) continue;
+    for (std::size_t q = 0; q < period; q++) {
+      const std::size_t i = occ[k - 1] + q;
+      if (!usable(c, i)) continue;
+      const double h = std::hypot(c.x[i], c.y[i]);
+      s1[q] += 1;
+      sh[q] += h;
+      sz[q] += c.z[i];
+      shh[q] += h * h;
+      shz[q] += h * c.z[i];
+    }
+  }
+  std::vector<double> tan_el(period, 0.0), offset(period, 0.0);
+  for (std::size_t q = 0; q < period; q++) {
+    if (s1[q] == 0) continue;
+    const double var = shh[q] / s1[q] - (sh[q] / s1[q]) * (sh[q] / s1[q]);
+    if (s1[q] >= 8 && var >= 4.0) {
+      tan_el[q] = (s1[q] * shz[q] - sh[q] * sz[q]) / (s1[q] * shh[q] - sh[q] * sh[q]);
+      offset[q] = (sz[q] - tan_el[q] * sh[q]) / s1[q];
+    } else {
+      tan_el[q] = sz[q] / sh[q];
+    }
+  }
+  elevations.assign(period, std::nan(""));
+  for (std::size_t q = 0; q < period; q++)
+    if (s1[q] > 0) elevations[q] = std::atan(tan_el[q]);
+  auto misfit = [&](std::size_t i, int q) {
+    if (!usable(c, i)) return 0.0;
+    const double h = std::max(1.0, static_cast<double>(std::hypot(c.x[i], c.y[i])));
+    const auto qi = static_cast<std::size_t>(q % P);
+    return std::abs(c.z[i] - (h * tan_el[qi] + offset[qi])) / h;
+  };
+  // Align the points between consecutive anchor returns (and before the first / after the last)
+  // to the positions in order.
+  laser.assign(n, 0);
+  auto align = [&](std::size_t from, std::size_t to, int first_slot, int slots) {
+    // points [from, to) to slots first_slot .. first_slot + slots - 1, increasing
+    const std::size_t m = to - from;
+    if (m == 0) return;
+    if (static_cast<int>(m) > slots) {  // more points than positions: nearest position each
+      for (std::size_t i = from; i < to; i++) {
+        int best = 0;
+        for (int q = 1; q < P; q++)
+          if (misfit(i, q) < misfit(i, best)) best = q;
+        laser[i] = static_cast<std::uint16_t>(best);
+      }
+      return;
+    }
+    const auto S = static_cast<std::size_t>(slots);
+    std::vector<double> prev(S), cur(S);
+    std::vector<std::uint16_t> back(m * S);
+    for (std::size_t s = 0; s < S; s++) prev[s] = misfit(from, first_slot + static_cast<int>(s));
+    for (std::size_t j = 1; j < m; j++) {
+      double best = 1e300;
+      std::size_t arg = 0;
+      for (std::size_t s = 0; s < S; s++) {
+        cur[s] = 1e300;
+        if (s >= 1 && prev[s - 1] < best) {
+          best = prev[s - 1];
+          arg = s - 1;
+        }
+        if (s >= j) {
+          cur[s] = best + misfit(from + j, first_slot + static_cast<int>(s));
+          back[j * S + s] = static_cast<std::uint16_t>(arg);
+        }
+      }
+      std::swap(prev, cur);
+    }
+    std::size_t s =
+        static_cast<std::size_t>(std::min_element(prev.begin(), prev.end()) - prev.begin());
+    for (std::size_t j = m; j-- > 0;) {
+      laser[from + j] = static_cast<std::uint16_t>((first_slot + static_cast<int>(s)) % P);
+      if (j > 0) s = back[j * S + s];
+    }
+  };
+  align(0, occ.front(), 1, P - 1);  // the tail of a cycle before the first anchor return
+  for (std::size_t k = 0; k < occ.size(); k++) {
+    laser[occ[k]] = 0;
+    const std::size_t end = k + 1 < occ.size() ? occ[k + 1] : n;
+    int firings = 1;
+    if (k + 1 < occ.size()) firings = std::max(1, static_cast<int>(std::lround(steps[k] / step)));
+    align(occ[k] + 1, end, 1, std::min(4, firings) * P - 1);
+  }
+  return P;
+}
+
+/// Rule 3: raw firing order. The points come in the order the lasers fired: every laser once per
+/// firing (less the no-returns), firing after firing, about one revolution per sweep (a sweep may
+/// hold more: the repeated sector is kept and counted in `repeated`). From the data alone:
+///  a. beams: the peaks of the elevation histogram of the points beyond kNear (0.01-degree bins
+///     smoothed over +-0.03 degrees, peaks >= 0.07 degrees apart);
+///  b. the period (firingPeriodLasers): an isolated beam is one laser, firing once per cycle;
+///     its returns one firing apart are `lasers` stored points apart when no other laser had a
+///     no-return in between; those complete cycles give every cycle position's elevation and
+///     vertical offset, and the points of the other cycles are aligned to the positions in order.
+/// 0 lasers when it fails (under 4 beams, no isolated beam firing once per firing, fewer than 8
+/// complete cycles). `elevations` receives each laser's fitted elevation [rad].
+int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, std::size_t& repeated,
+                      std::vector<double>& elevations) {
   constexpr double kBin = 0.01 * M_PI / 180.0, kSigma = 3.0;  // bins
   constexpr double kMinSeparation = 0.07 * M_PI / 180.0;
-  constexpr int kMaxSkip = 12;
   constexpr double kNear = 2.0;  // [m] nearer points (the vehicle, a laser's offset) are not used
   const std::size_t n = c.size();
   std::vector<std::size_t> pts;  // usable points, in stored order
@@ -233,175 +417,8 @@ int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser,
   }
   if (beam.size() < 4 || beam.size() > 1024) return 0;
   std::sort(beam.begin(), beam.end());
-  auto nearestBeam = [&](double e) {
-    const auto it = std::lower_bound(beam.begin(), beam.end(), e);
-    std::size_t j = static_cast<std::size_t>(it - beam.begin());
-    if (j == beam.size() || (j > 0 && e - beam[j - 1] < beam[j] - e)) j--;
-    return j;
-  };
-
-  // b. The firing cycle: each beam's most frequent successor among consecutive far points.
-  const std::size_t nb = beam.size();
-  std::vector<std::vector<std::size_t>> next(nb, std::vector<std::size_t>(nb, 0));
-  std::vector<std::size_t> seen(nb, 0);
-  for (std::size_t k = 0; k + 1 < pts.size(); k++)
-    if (hor[k] >= kNear && hor[k + 1] >= kNear) {
-      const std::size_t a = nearestBeam(elev[k]), b = nearestBeam(elev[k + 1]);
-      next[a][b]++;
-      seen[a]++;
-    }
-  std::vector<int> succ(nb, -1);
-  for (std::size_t a = 0; a < nb; a++)
-    if (seen[a] > 0)
-      succ[a] =
-          static_cast<int>(std::max_element(next[a].begin(), next[a].end()) - next[a].begin());
-  const auto start =
-      static_cast<std::size_t>(std::max_element(seen.begin(), seen.end()) - seen.begin());
-  // Follow the successors from the most seen beam until one repeats: the loop is the cycle of
-  // the beams that (nearly) always return. A beam that often has no return (e.g. the top one,
-  // under an open sky) is skipped by its predecessor's most frequent successor: it goes in after
-  // the cycle's beam it follows most often.
-  std::vector<int> cycle;  // beams in firing order
-  std::vector<int> visit(nb, -1);
-  for (int a = static_cast<int>(start); a >= 0; a = succ[static_cast<std::size_t>(a)]) {
-    if (visit[static_cast<std::size_t>(a)] >= 0) {
-      cycle.erase(cycle.begin(), cycle.begin() + visit[static_cast<std::size_t>(a)]);
-      break;
-    }
-    visit[static_cast<std::size_t>(a)] = static_cast<int>(cycle.size());
-    cycle.push_back(a);
-  }
-  if (cycle.size() < 2 ||
-      visit[static_cast<std::size_t>(succ[static_cast<std::size_t>(cycle.back())])] < 0)
-    return 0;
-  std::vector<char> in_cycle(nb, 0);
-  for (int a : cycle) in_cycle[static_cast<std::size_t>(a)] = 1;
-  std::vector<std::size_t> rest;
-  for (std::size_t x = 0; x < nb; x++)
-    if (!in_cycle[x]) rest.push_back(x);
-  std::sort(rest.begin(), rest.end(),
-            [&](std::size_t a, std::size_t b) { return seen[a] > seen[b]; });
-  for (std::size_t x : rest) {
-    std::size_t best = 0, after = 0;
-    for (std::size_t k = 0; k < cycle.size(); k++) {
-      const std::size_t v = next[static_cast<std::size_t>(cycle[k])][x];
-      if (v > best) {
-        best = v;
-        after = k;
-      }
-    }
-    if (best == 0) continue;
-    cycle.insert(cycle.begin() + static_cast<std::ptrdiff_t>(after + 1), static_cast<int>(x));
-    in_cycle[x] = 1;
-  }
-  if (cycle.size() < 4) return 0;
-  std::size_t far_total = 0, far_outside = 0;
-  for (std::size_t a = 0; a < nb; a++) {
-    far_total += seen[a];
-    if (!in_cycle[a]) far_outside += seen[a];
-  }
-  if (far_outside > far_total / 50) return 0;  // beams off the cycle: not one firing pattern
-
-  // c. Each point's cycle position, twice: with the histogram's beams, then with each laser's
-  // fitted elevation and vertical offset.
-  const int lasers = static_cast<int>(cycle.size());
-  std::vector<double> tan_el(cycle.size()), offset(cycle.size(), 0.0);
-  for (std::size_t k = 0; k < cycle.size(); k++)
-    tan_el[k] = std::tan(beam[static_cast<std::size_t>(cycle[k])]);
-  std::vector<int> pos(pts.size(), 0);
-  std::size_t following = 0, far_pairs = 0;
-  for (int pass = 0; pass < 2; pass++) {
-    int p = -1;
-    following = far_pairs = 0;
-    for (std::size_t k = 0; k < pts.size(); k++) {
-      const double z = c.z[pts[k]], h = hor[k];
-      auto miss = [&](int q) {
-        const auto qi = static_cast<std::size_t>(q);
-        return std::abs(z - (h * tan_el[qi] + offset[qi])) / std::max(h, 1.0);
-      };
-      int best = -1;
-      double best_miss = 0;
-      if (p >= 0)
-        for (int s = 1; s <= kMaxSkip + 1 && s <= lasers; s++) {
-          const int q = (p + s) % lasers;
-          const double m = miss(q);
-          if (best < 0 || m < best_miss) {
-            best = q;
-            best_miss = m;
-          }
-        }
-      // Re-synchronize when no position after the previous one fits (a long gap of no-returns).
-      const double tolerance = 0.5 * kMinSeparation + (pass == 0 ? 0.3 : 0.05) / std::max(h, 1.0);
-      if (best < 0 || best_miss > tolerance)
-        for (int q = 0; q < lasers; q++) {
-          const double m = miss(q);
-          if (best < 0 || m < best_miss) {
-            best = q;
-            best_miss = m;
-          }
-        }
-      if (k > 0 && h >= kNear && hor[k - 1] >= kNear) {
-        far_pairs++;
-        if (p >= 0 && (best - p + lasers) % lasers == 1) following++;
-      }
-      pos[k] = p = best;
-    }
-    if (pass == 1) break;
-    // Fit each laser's elevation and vertical offset (z = h t + v) to its points; the offset only
-    // where the distances spread enough to tell it from the elevation.
-    for (int q = 0; q < lasers; q++) {
-      double s1 = 0, sh = 0, sz = 0, shh = 0, shz = 0, far_t = 0, far_n = 0;
-      for (std::size_t k = 0; k < pts.size(); k++) {
-        if (pos[k] != q) continue;
-        const double h = hor[k], z = c.z[pts[k]];
-        s1 += 1;
-        sh += h;
-        sz += z;
-        shh += h * h;
-        shz += h * z;
-        if (h >= kFarRange) {
-          far_t += z / h;
-          far_n += 1;
-        }
-      }
-      const auto qi = static_cast<std::size_t>(q);
-      const double var = s1 > 0 ? shh / s1 - (sh / s1) * (sh / s1) : 0.0;
-      if (s1 >= 16 && var >= 4.0) {  // distances spread over >= 2 m (standard deviation)
-        tan_el[qi] = (s1 * shz - sh * sz) / (s1 * shh - sh * sh);
-        offset[qi] = (sz - tan_el[qi] * sh) / s1;
-      } else if (far_n >= 8) {
-        tan_el[qi] = far_t / far_n;
-      }
-    }
-  }
-  // In a cycle most points follow the previous one's laser directly; in any other order about
-  // one in `lasers` does.
-  if (static_cast<double>(following) < std::max(0.5, 3.0 / lasers) * static_cast<double>(far_pairs))
-    return 0;
-  // Lasers in elevation order are renumbered by rowsByElevation later; here: cycle position.
-  laser.assign(n, 0);
-  for (std::size_t k = 0; k < pts.size(); k++) laser[pts[k]] = static_cast<std::uint16_t>(pos[k]);
-  // Unusable points sit with the laser before them (they are not projected).
-  for (std::size_t i = 1; i < n; i++)
-    if (!usable(c, i)) laser[i] = laser[i - 1];
-  // The repeated sector: each laser's points after it has turned a full revolution.
-  repeated = 0;
-  std::vector<double> first_az(cycle.size(), std::nan("")), turned(cycle.size(), 0.0),
-      last_az(cycle.size(), 0.0);
-  for (std::size_t k = 0; k < pts.size(); k++) {
-    const auto q = static_cast<std::size_t>(pos[k]);
-    const double az = std::atan2(c.y[pts[k]], c.x[pts[k]]);
-    if (std::isnan(first_az[q])) {
-      first_az[q] = last_az[q] = az;
-      continue;
-    }
-    double d = az - last_az[q];
-    if (d > M_PI) d -= kTwoPi;
-    if (d < -M_PI) d += kTwoPi;
-    turned[q] += d;
-    last_az[q] = az;
-    if (std::abs(turned[q]) >= kTwoPi) repeated++;
-  }
+  const int lasers = firingPeriodLasers(c, beam, elev, pts, laser, elevations);
+  if (lasers > 0) repeated = repeatedPoints(c, laser, lasers);
   return lasers;
 }
 
@@ -508,6 +525,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   cloud.col.clear();
   RecoveredRows out;
   std::vector<std::uint16_t> laser;
+  std::vector<double> fitted;  // rule 3: each laser's fitted elevation (its vertical offset apart)
   int lasers = 0;
   if (cloud.hasRing()) {
     laser = cloud.ring;
@@ -517,7 +535,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     lasers = firingOrderLasers(cloud, laser);
     out.source = RowSource::FiringOrder;
     if (lasers == 0) {
-      lasers = firingCycleLasers(cloud, laser, out.repeated);
+      lasers = firingCycleLasers(cloud, laser, out.repeated, fitted);
       out.source = RowSource::FiringCycle;
     }
   }
@@ -550,7 +568,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   if (lasers > 0 && (!hint || hint->rows == lasers)) {
     std::vector<double> table;
     const std::vector<int> to_row =
-        rowsByElevation(measuredElevations(cloud, laser, lasers), table);
+        rowsByElevation(fitted.empty() ? measuredElevations(cloud, laser, lasers) : fitted, table);
     out.sensor = withTable(hint, std::move(table), "recovered rows");
     if (!hint) out.sensor.cols = estimateColumns(cloud, laser, lasers);
     cloud.row.resize(cloud.size());

@@ -7,8 +7,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <random>
+#include <set>
 #include <stdexcept>
 
 #include "UnorderedSweep.h"
@@ -195,10 +197,12 @@ std::vector<int> trueRows(const dynobj::test::FiringPattern& p) {
 }  // namespace
 
 TEST(RowRecovery, RawFiringOrderGivesEveryRowWithoutAModel) {
-  // VLP-16 and HDL-32E clouds in packet order (interleaved lasers, 2 % no-returns, sky above the
-  // walls): every point on its true row, the table measured, one column per firing; a sweep of
-  // 394 degrees keeps its repeated sector and counts it.
-  for (const auto& p : {dynobj::test::vlp16Pattern(), dynobj::test::hdl32Pattern()}) {
+  // VLP-16, HDL-32E and VLS-128-like clouds in packet order (interleaved lasers; 128 lasers fired
+  // 8 at once with azimuth offsets up to 6.4 degrees, 0.11 degrees apart near the horizon; 2 %
+  // no-returns, sky above the walls): every point on its true row, the table measured, one column
+  // per firing; a sweep of 394 degrees keeps its repeated sector and counts it.
+  for (const auto& p : {dynobj::test::vlp16Pattern(), dynobj::test::hdl32Pattern(),
+                        dynobj::test::vls128Pattern()}) {
     for (double sweep : {360.0, 394.0}) {
       SCOPED_TRACE(p.name + " " + std::to_string(sweep));
       std::vector<int> laser;
@@ -222,26 +226,45 @@ TEST(RowRecovery, RawFiringOrderGivesEveryRowWithoutAModel) {
       const auto table = rec.sensor.rowElevations();
       std::vector<double> want = p.elevation_deg;
       std::sort(want.begin(), want.end(), std::greater<>());
-      for (std::size_t r = 0; r < want.size(); r++) EXPECT_NEAR(table[r] / kDeg, want[r], 0.05);
+      // (a laser that sees only the road cannot show its few-cm vertical offset apart from its
+      // elevation: VLS-128's table is off by up to a few tenths of a degree there)
+      const double tolerance = p.vertical_offset_m.empty() ? 0.05 : 0.5;
+      for (std::size_t r = 0; r < want.size(); r++)
+        EXPECT_NEAR(table[r] / kDeg, want[r], tolerance);
     }
   }
 }
 
-TEST(RowRecovery, RawFiringOrderTheRuleCannotSortOutIsRefusedNotGuessed) {
-  // Lasers 0.11 degrees apart (VLS-128-like) or with vertical offsets of 0.1-0.25 m (HDL-64E-like)
-  // blur the beams' elevations into each other: no firing cycle is found, and without a sensor
-  // model that is an error naming the cause.
-  for (const auto& p : {dynobj::test::hdl64Pattern(), dynobj::test::vls128Pattern()}) {
-    SCOPED_TRACE(p.name);
-    std::vector<int> laser;
-    PointCloud c = dynobj::test::rawFiringSweep(p, laser, 394.0);
-    try {
-      const auto rec = recoverRows(c, std::nullopt);
-      ADD_FAILURE() << "rows from " << toString(rec.source);
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("cannot be recovered"), std::string::npos) << e.what();
-    }
+TEST(RowRecovery, RawFiringOrderWithLargeVerticalOffsetsGroupsEveryLaser) {
+  // HDL-64E-like: vertical offsets of 0.10-0.25 m. Every laser's points still share one row of
+  // their own; but a laser that sees only the flat road shows its elevation tilted by its offset
+  // (a constant, so indistinguishable from the beam's), and such lasers 0.5 degrees apart may be
+  // ordered wrongly among themselves.
+  const auto p = dynobj::test::hdl64Pattern();
+  std::vector<int> laser;
+  PointCloud c = dynobj::test::rawFiringSweep(p, laser, 394.0);
+  const auto rec = recoverRows(c, std::nullopt);
+  EXPECT_EQ(rec.source, RowSource::FiringCycle);
+  ASSERT_EQ(rec.sensor.rows, 64);
+  ASSERT_TRUE(c.isOrganized());
+  std::map<std::pair<int, int>, std::size_t> pairs;  // (row, true laser) -> points
+  for (std::size_t i = 0; i < c.size(); i++) pairs[{c.row[i], laser[i]}]++;
+  std::map<int, std::pair<std::size_t, int>> top;  // row -> (points, laser) of its main laser
+  for (const auto& [k, v] : pairs)
+    if (v > top[k.first].first) top[k.first] = {v, k.second};
+  std::size_t grouped = 0;
+  std::set<int> lasers_of_rows;
+  for (const auto& [r, t] : top) {
+    grouped += t.first;
+    lasers_of_rows.insert(t.second);
   }
+  EXPECT_EQ(lasers_of_rows.size(), 64u);  // one laser per row
+  EXPECT_GE(static_cast<double>(grouped), 0.999 * static_cast<double>(c.size()));
+  const auto truth = trueRows(p);
+  std::size_t right = 0;
+  for (std::size_t i = 0; i < c.size(); i++)
+    right += c.row[i] == truth[static_cast<std::size_t>(laser[i])];
+  EXPECT_GE(static_cast<double>(right), 0.75 * static_cast<double>(c.size()));  // 0.797 here
 }
 
 TEST(RowRecovery, ShuffledRawFiringOrderIsNoFiringCycle) {
