@@ -283,17 +283,21 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
   elevations.assign(period, std::nan(""));
   for (std::size_t q = 0; q < period; q++)
     if (s1[q] > 0) elevations[q] = std::atan(tan_el[q]);
+  std::vector<float> hz(n, -1.0f);  // horizontal distance (>= 1 m), -1 for unusable points
+  for (std::size_t i = 0; i < n; i++)
+    if (usable(c, i)) hz[i] = std::max(1.0f, std::hypot(c.x[i], c.y[i]));
   auto misfit = [&](std::size_t i, int q) {
-    if (!usable(c, i)) return 0.0;
-    const double h = std::max(1.0, static_cast<double>(std::hypot(c.x[i], c.y[i])));
+    if (hz[i] < 0) return 0.0;
     const auto qi = static_cast<std::size_t>(q % P);
-    return std::abs(c.z[i] - (h * tan_el[qi] + offset[qi])) / h;
+    return std::abs(c.z[i] - (hz[i] * tan_el[qi] + offset[qi])) / hz[i];
   };
   // Align the points between consecutive anchor returns (and before the first / after the last)
-  // to the positions in order.
+  // to the positions in order. Point j of m can only take positions j .. slots - m + j: the
+  // dynamic programme runs over that band (as wide as the no-returns in the interval, plus one).
   laser.assign(n, 0);
+  std::vector<double> prev, cur;
+  std::vector<std::uint16_t> back;
   auto align = [&](std::size_t from, std::size_t to, int first_slot, int slots) {
-    // points [from, to) to slots first_slot .. first_slot + slots - 1, increasing
     const std::size_t m = to - from;
     if (m == 0) return;
     if (static_cast<int>(m) > slots) {  // more points than positions: nearest position each
@@ -305,31 +309,29 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
       }
       return;
     }
-    const auto S = static_cast<std::size_t>(slots);
-    std::vector<double> prev(S), cur(S);
-    std::vector<std::uint16_t> back(m * S);
-    for (std::size_t s = 0; s < S; s++) prev[s] = misfit(from, first_slot + static_cast<int>(s));
+    const std::size_t W = static_cast<std::size_t>(slots) - m + 1;  // band width
+    prev.assign(W, 0.0);
+    cur.assign(W, 0.0);
+    back.resize(m * W);
+    for (std::size_t d = 0; d < W; d++) prev[d] = misfit(from, first_slot + static_cast<int>(d));
     for (std::size_t j = 1; j < m; j++) {
       double best = 1e300;
       std::size_t arg = 0;
-      for (std::size_t s = 0; s < S; s++) {
-        cur[s] = 1e300;
-        if (s >= 1 && prev[s - 1] < best) {
-          best = prev[s - 1];
-          arg = s - 1;
+      for (std::size_t d = 0; d < W; d++) {  // position j + d, after j - 1 + d' with d' <= d
+        if (prev[d] < best) {
+          best = prev[d];
+          arg = d;
         }
-        if (s >= j) {
-          cur[s] = best + misfit(from + j, first_slot + static_cast<int>(s));
-          back[j * S + s] = static_cast<std::uint16_t>(arg);
-        }
+        cur[d] = best + misfit(from + j, first_slot + static_cast<int>(j + d));
+        back[j * W + d] = static_cast<std::uint16_t>(arg);
       }
       std::swap(prev, cur);
     }
-    std::size_t s =
+    std::size_t d =
         static_cast<std::size_t>(std::min_element(prev.begin(), prev.end()) - prev.begin());
     for (std::size_t j = m; j-- > 0;) {
-      laser[from + j] = static_cast<std::uint16_t>((first_slot + static_cast<int>(s)) % P);
-      if (j > 0) s = back[j * S + s];
+      laser[from + j] = static_cast<std::uint16_t>((first_slot + static_cast<int>(j + d)) % P);
+      if (j > 0) d = back[j * W + d];
     }
   };
   align(0, occ.front(), 1, P - 1);  // the tail of a cycle before the first anchor return
