@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Benchmark: row recovery per sweep (core::recoverRows, no sensor model) on the simulated firing
+// patterns of the row recovery tests, the same points stored two ways side by side: in raw firing
+// order (rule 3, firing cycle) and laser by laser (rule 2, firing order). Median of 7 runs.
+//   build/tests/row_recovery_bench
+#include <dynobj/core/RowRecovery.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "UnorderedSweep.h"
+
+namespace {
+
+double medianMs(const dynobj::core::PointCloud& cloud, dynobj::core::RowSource& source) {
+  std::vector<double> ms;
+  for (int k = 0; k < 7; k++) {
+    dynobj::core::PointCloud c = cloud;
+    const auto t0 = std::chrono::steady_clock::now();
+    source = dynobj::core::recoverRows(c, std::nullopt).source;
+    ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[3];
+}
+
+}  // namespace
+
+int main() {
+  std::printf("%-8s %8s  %-28s %-28s\n", "pattern", "points", "raw firing order (rule 3)",
+              "laser by laser (rule 2)");
+  for (const auto& p : {dynobj::test::vlp16Pattern(), dynobj::test::hdl32Pattern(),
+                        dynobj::test::hdl64Pattern(), dynobj::test::vls128Pattern()}) {
+    std::vector<int> laser;
+    const dynobj::core::PointCloud raw = dynobj::test::rawFiringSweep(p, laser, 360.0);
+    dynobj::core::PointCloud by_laser;  // the same points, each laser's in firing order
+    for (int l = 0; l < static_cast<int>(p.elevation_deg.size()); l++)
+      for (std::size_t i = 0; i < raw.size(); i++)
+        if (laser[i] == l) by_laser.push_back(raw.x[i], raw.y[i], raw.z[i], raw.intensity[i]);
+    dynobj::core::RowSource s3{}, s2{};
+    const double t3 = medianMs(raw, s3), t2 = medianMs(by_laser, s2);
+    std::printf("%-8s %8zu  %7.1f ms (%-16s) %7.1f ms (%s)\n", p.name.c_str(), raw.size(), t3,
+                toString(s3), t2, toString(s2));
+  }
+  return 0;
+}
