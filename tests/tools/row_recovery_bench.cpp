@@ -43,8 +43,16 @@ int main() {
                         dynobj::test::hdl64Pattern(), dynobj::test::vls128Pattern()}) {
     std::vector<int> laser;
     const dynobj::core::PointCloud raw = dynobj::test::rawFiringSweep(p, laser, 360.0);
-    dynobj::core::PointCloud by_laser;  // the same points, each laser's in firing order
-    for (int l = 0; l < static_cast<int>(p.elevation_deg.size()); l++)
+    // The same points laser by laser, top laser first (how KITTI stores a sweep), each laser's in
+    // firing order.
+    std::vector<int> ids(p.elevation_deg.size());
+    for (std::size_t l = 0; l < ids.size(); l++) ids[l] = static_cast<int>(l);
+    std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) {
+      return p.elevation_deg[static_cast<std::size_t>(a)] >
+             p.elevation_deg[static_cast<std::size_t>(b)];
+    });
+    dynobj::core::PointCloud by_laser;
+    for (int l : ids)
       for (std::size_t i = 0; i < raw.size(); i++)
         if (laser[i] == l) by_laser.push_back(raw.x[i], raw.y[i], raw.z[i], raw.intensity[i]);
     std::string s3, s2;
