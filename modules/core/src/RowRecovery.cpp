@@ -155,12 +155,14 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
   return lasers;
 }
 
-/// The points of each laser after it has turned a full revolution (a sweep of more than 360°).
-std::size_t repeatedPoints(const PointCloud& c, const std::vector<std::uint16_t>& laser,
-                           int lasers) {
-  std::size_t repeated = 0;
+/// Marks the points of each laser after it has turned a full revolution since its first point
+/// (the sector a sweep of more than 360 degrees scans a second time); returns how many.
+std::size_t markRepeated(const PointCloud& c, const std::vector<std::uint16_t>& laser, int lasers,
+                         std::vector<std::uint8_t>& repeated) {
+  std::size_t count = 0;
   const auto nl = static_cast<std::size_t>(lasers);
   std::vector<double> turned(nl, 0.0), last_az(nl, std::nan(""));
+  repeated.assign(c.size(), 0);
   for (std::size_t i = 0; i < c.size(); i++) {
     if (!usable(c, i) || laser[i] >= nl) continue;
     const auto q = laser[i];
@@ -172,9 +174,13 @@ std::size_t repeatedPoints(const PointCloud& c, const std::vector<std::uint16_t>
       turned[q] += d;
     }
     last_az[q] = az;
-    if (std::abs(turned[q]) >= kTwoPi) repeated++;
+    if (std::abs(turned[q]) >= kTwoPi) {
+      repeated[i] = 1;
+      count++;
+    }
   }
-  return repeated;
+  if (count == 0) repeated.clear();
+  return count;
 }
 
 /// Rule 3, step b: the anchor is the isolated beam (no other within kIsolated) with the most
@@ -347,7 +353,8 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
 
 /// Rule 3: raw firing order. The points come in the order the lasers fired: every laser once per
 /// firing (less the no-returns), firing after firing, about one revolution per sweep (a sweep may
-/// hold more: the repeated sector is kept and counted in `repeated`). From the data alone:
+/// hold more: the points of the sector scanned twice are marked in `out.second_pass`). From the
+/// data alone:
 ///  a. beams: the peaks of the elevation histogram of the points beyond kNear (0.01-degree bins
 ///     smoothed over +-0.03 degrees, peaks >= 0.07 degrees apart);
 ///  b. the period (firingPeriodLasers): an isolated beam is one laser, firing once per cycle;
@@ -420,7 +427,7 @@ int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, st
   if (beam.size() < 4 || beam.size() > 1024) return 0;
   std::sort(beam.begin(), beam.end());
   const int lasers = firingPeriodLasers(c, beam, elev, pts, laser, elevations);
-  if (lasers > 0) repeated = repeatedPoints(c, laser, lasers);
+  if (lasers > 0) out.repeated = markRepeated(c, laser, lasers, out.second_pass);
   return lasers;
 }
 
@@ -537,7 +544,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     lasers = firingOrderLasers(cloud, laser);
     out.source = RowSource::FiringOrder;
     if (lasers == 0) {
-      lasers = firingCycleLasers(cloud, laser, out.repeated, fitted);
+      lasers = firingCycleLasers(cloud, laser, out, fitted);
       out.source = RowSource::FiringCycle;
     }
   }
@@ -600,7 +607,9 @@ ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorMo
   if (source) *source = rows.source;
   if (lasers) *lasers = rows.lasers;
   const SphericalProjection projection(rows.sensor);
-  return cloud.isOrganized() ? projection.organize(cloud, frame) : projection.project(cloud, frame);
+  return cloud.isOrganized()
+             ? projection.organize(cloud, frame, rows.second_pass.empty() ? nullptr : &rows.second_pass)
+             : projection.project(cloud, frame);
 }
 
 namespace {

@@ -47,14 +47,15 @@ float sanitizedIntensity(const PointCloud& cloud, std::size_t i, ProjectionStats
 
 /// Puts point i at (r, c) unless a nearer point is already there. Updates the point map.
 void insertPoint(const PointCloud& cloud, std::size_t i, int r, int c, LidarFrame& frame,
-                 ProjectionStats& st) {
+                 ProjectionStats& st, bool second_pass = false) {
   const float px = cloud.x[i], py = cloud.y[i], pz = cloud.z[i];
   const float rng = std::sqrt(px * px + py * py + pz * pz);
   const float inten = sanitizedIntensity(cloud, i, st);
   frame.point_pixel[i] = frame.pixelIndex(r, c);
   if (frame.isValid(r, c)) {
     st.hidden++;
-    if (frame.range(r, c) <= rng) return;  // keep the nearer point (ties: the first one)
+    // keep the nearer point (ties: the first one); a second pass never replaces the first
+    if (second_pass || frame.range(r, c) <= rng) return;
   }
   frame.setPixel(r, c, rng, inten, cv::Vec3f(px, py, pz), static_cast<std::int32_t>(i));
 }
@@ -187,7 +188,10 @@ ProjectionStats SphericalProjection::project(const PointCloud& cloud, LidarFrame
   return st;
 }
 
-ProjectionStats SphericalProjection::organize(const PointCloud& cloud, LidarFrame& frame) const {
+ProjectionStats SphericalProjection::organize(const PointCloud& cloud, LidarFrame& frame,
+                                              const std::vector<std::uint8_t>* second_pass) const {
+  if (second_pass && second_pass->size() != cloud.size())
+    throw std::invalid_argument("organize(): second_pass does not have one entry per point");
   if (!cloud.isOrganized())
     throw std::invalid_argument("organize(): the cloud has no row/col per point");
   ProjectionStats st;
@@ -204,7 +208,7 @@ ProjectionStats SphericalProjection::organize(const PointCloud& cloud, LidarFram
       st.invalid++;
       continue;
     }
-    insertPoint(cloud, i, r, c, frame, st);
+    insertPoint(cloud, i, r, c, frame, st, second_pass && (*second_pass)[i]);
   }
   st.pixels_set = frame.validCount();
   return st;

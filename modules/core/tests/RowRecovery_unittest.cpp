@@ -220,6 +220,7 @@ TEST(RowRecovery, RawFiringOrderGivesEveryRowWithoutAModel) {
         if (turn[i] >= 360.0) twice++;
       }
       EXPECT_NEAR(static_cast<double>(rec.repeated), static_cast<double>(twice), 0.01 * c.size());
+      EXPECT_EQ(rec.second_pass.empty(), rec.repeated == 0);
       if (sweep == 360.0) {
         EXPECT_EQ(rec.repeated, 0u);
       }
@@ -272,4 +273,32 @@ TEST(RowRecovery, ShuffledRawFiringOrderIsNoFiringCycle) {
   PointCloud c = dynobj::test::rawFiringSweep(dynobj::test::vlp16Pattern(), laser);
   dynobj::test::shuffle(c, laser);
   EXPECT_THROW(recoverRows(c, std::nullopt), std::invalid_argument);
+}
+
+TEST(RowRecovery, SweepOfMoreThanOneRevolutionKeepsTheFirstPassInTheImage) {
+  // 394 degrees of a VLP-16 in packet order: the first 34 degrees are scanned twice. Each pixel of
+  // that sector holds its first-pass return; a second-pass point holds a pixel only where the
+  // first pass had none; every point is mapped to a pixel.
+  std::vector<int> laser;
+  std::vector<double> turn;
+  PointCloud c =
+      dynobj::test::rawFiringSweep(dynobj::test::vlp16Pattern(), laser, 394.0, 30.0, 3, &turn);
+  LidarFrame frame;
+  RowSource source{};
+  projectUnordered(c, std::nullopt, frame, &source);
+  ASSERT_EQ(source, RowSource::FiringCycle);
+  std::set<std::int32_t> first_pass_pixels;
+  for (std::size_t i = 0; i < c.size(); i++) {
+    ASSERT_GE(frame.point_pixel[i], 0);
+    if (turn[i] < 360.0) first_pass_pixels.insert(frame.point_pixel[i]);
+  }
+  std::size_t second_held = 0;
+  for (int r = 0; r < frame.sensor.rows; r++)
+    for (int col = 0; col < frame.sensor.cols; col++) {
+      const std::int32_t src = frame.source_index(r, col);
+      if (src < 0 || turn[static_cast<std::size_t>(src)] < 360.0) continue;
+      second_held++;
+      EXPECT_EQ(first_pass_pixels.count(frame.pixelIndex(r, col)), 0u) << r << "," << col;
+    }
+  EXPECT_GT(second_held, 0u);  // holes of the first pass (2 % no-returns) filled
 }

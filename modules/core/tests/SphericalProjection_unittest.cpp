@@ -206,6 +206,25 @@ TEST(SphericalProjection, OrganizedPathKeepsGivenPixels) {
   EXPECT_EQ(f.point_pixel, (std::vector<std::int32_t>{29, 0, 0}));
 }
 
+TEST(SphericalProjection, SecondPassOnlyFillsPixelsTheFirstLeftEmpty) {
+  const SphericalProjection p(tinySensor());
+  PointCloud cloud;
+  cloud.push_back(3, 0, 0, 7, 0, 0);  // first pass, 3 m
+  cloud.push_back(1, 0, 0, 8, 0, 0);  // second pass, nearer, same pixel: does not take it
+  cloud.push_back(2, 0, 0, 9, 1, 1);  // second pass, a pixel the first left empty: takes it
+  const std::vector<std::uint8_t> second = {0, 1, 1};
+  LidarFrame f;
+  const auto st = p.organize(cloud, f, &second);
+  EXPECT_EQ(st.pixels_set, 2u);
+  EXPECT_EQ(st.hidden, 1u);
+  EXPECT_EQ(f.source_index(0, 0), 0);
+  EXPECT_FLOAT_EQ(f.range(0, 0), 3.0f);
+  EXPECT_EQ(f.source_index(1, 1), 2);
+  EXPECT_EQ(f.point_pixel, (std::vector<std::int32_t>{0, 0, 9}));  // every point mapped
+  const std::vector<std::uint8_t> wrong_size = {0, 1};
+  EXPECT_THROW(p.organize(cloud, f, &wrong_size), std::invalid_argument);
+}
+
 TEST(SphericalProjection, OrganizedPathRejectsPixelsOutsideImage) {
   const SphericalProjection p(tinySensor());
   PointCloud cloud;

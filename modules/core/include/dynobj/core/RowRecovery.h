@@ -13,8 +13,9 @@
 //                     once per firing, cycle after cycle, no-returns left out): the beams are the
 //                     peaks of the far points' elevations, the cycle their most frequent order,
 //                     each point's laser the cycle position after the previous point's that fits
-//                     its elevation (with each laser's fitted vertical offset); a sweep holding
-//                     more than one revolution keeps the repeated sector (RecoveredRows::repeated);
+//                     its elevation (with each laser's fitted vertical offset); in a sweep of
+//                     more than one revolution the first pass holds the pixels and the sector's
+//                     second pass only fills the ones it left empty (RecoveredRows::second_pass);
 //  4. estimated table — the elevation histogram of the sweep's far points has one peak per beam;
 //  5. nominal table — the sensor model as given (the last resort).
 // Rules 1-4 return a sensor model whose beam table is the measured elevation of each row; rules
@@ -43,7 +44,10 @@ struct RecoveredRows {
   RowSource source = RowSource::NominalTable;
   SensorModel sensor;        ///< the rows found (beam_elevations = measured elevation per row)
   int lasers = 0;            ///< lasers the data shows (rules 1-3); 0 = unknown
-  std::size_t repeated = 0;  ///< rule 3: points in a sector the sweep scanned a second time
+  /// Rule 3, a sweep of more than one revolution: 1 for each point of the sector scanned a second
+  /// time (empty when none); they only fill pixels the first pass left empty (organize()).
+  std::vector<std::uint8_t> second_pass;
+  std::size_t repeated = 0;  ///< the points marked in second_pass
 };
 
 /// Recovers the rows of `cloud` (see the file comment). `hint` gives what is known of the sensor:

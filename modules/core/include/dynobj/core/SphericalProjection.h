@@ -56,8 +56,11 @@ class SphericalProjection {
   /// Unordered cloud -> frame via Eq. (1). `frame` is reset to the sensor's size.
   ProjectionStats project(const PointCloud& cloud, LidarFrame& frame) const;
   /// Organized cloud (row/col per point) -> frame. Throws std::invalid_argument naming the first
-  /// point whose row/col lies outside the image.
-  ProjectionStats organize(const PointCloud& cloud, LidarFrame& frame) const;
+  /// point whose row/col lies outside the image. Two points in one pixel: the nearer holds it;
+  /// but a point marked in `second_pass` (a sector the sweep scanned again, later) only takes a
+  /// pixel no earlier point holds. Every point maps to its pixel either way.
+  ProjectionStats organize(const PointCloud& cloud, LidarFrame& frame,
+                           const std::vector<std::uint8_t>* second_pass = nullptr) const;
 
  private:
   SensorModel sensor_;
