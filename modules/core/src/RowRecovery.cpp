@@ -363,7 +363,7 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
 ///     vertical offset, and the points of the other cycles are aligned to the positions in order.
 /// 0 lasers when it fails (under 4 beams, no isolated beam firing once per firing, fewer than 8
 /// complete cycles). `elevations` receives each laser's fitted elevation [rad].
-int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, std::size_t& repeated,
+int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, RecoveredRows& out,
                       std::vector<double>& elevations) {
   constexpr double kBin = 0.01 * M_PI / 180.0, kSigma = 3.0;  // bins
   constexpr double kMinSeparation = 0.07 * M_PI / 180.0;
@@ -608,7 +608,8 @@ ProjectionStats projectUnordered(PointCloud& cloud, const std::optional<SensorMo
   if (lasers) *lasers = rows.lasers;
   const SphericalProjection projection(rows.sensor);
   return cloud.isOrganized()
-             ? projection.organize(cloud, frame, rows.second_pass.empty() ? nullptr : &rows.second_pass)
+             ? projection.organize(cloud, frame,
+                                   rows.second_pass.empty() ? nullptr : &rows.second_pass)
              : projection.project(cloud, frame);
 }
 

@@ -42,8 +42,8 @@ inline bool rowsFromData(RowSource s) {
 
 struct RecoveredRows {
   RowSource source = RowSource::NominalTable;
-  SensorModel sensor;        ///< the rows found (beam_elevations = measured elevation per row)
-  int lasers = 0;            ///< lasers the data shows (rules 1-3); 0 = unknown
+  SensorModel sensor;  ///< the rows found (beam_elevations = measured elevation per row)
+  int lasers = 0;      ///< lasers the data shows (rules 1-3); 0 = unknown
   /// Rule 3, a sweep of more than one revolution: 1 for each point of the sector scanned a second
   /// time (empty when none); they only fill pixels the first pass left empty (organize()).
   std::vector<std::uint8_t> second_pass;
