@@ -29,15 +29,36 @@ double median(std::vector<double>& v) {
   return *mid;
 }
 
-}  // namespace
+/// Each point's angles, computed once for every rule: the azimuth (atan2 of the float
+/// coordinates), the horizontal distance and the elevation over it [rad, m]; `ok` = usable.
+struct Angles {
+  std::vector<char> ok;
+  std::vector<double> az, h, el;
+};
 
-std::vector<double> measuredElevations(const PointCloud& c, const std::vector<std::uint16_t>& group,
+Angles anglesOf(const PointCloud& c) {
+  Angles a;
+  const std::size_t n = c.size();
+  a.ok.assign(n, 0);
+  a.az.assign(n, 0.0);
+  a.h.assign(n, 0.0);
+  a.el.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; i++) {
+    if (!usable(c, i)) continue;
+    a.ok[i] = 1;
+    a.az[i] = std::atan2(c.y[i], c.x[i]);
+    a.h[i] = std::hypot(c.x[i], c.y[i]);
+    a.el[i] = std::atan2(static_cast<double>(c.z[i]), a.h[i]);
+  }
+  return a;
+}
+
+std::vector<double> measuredElevations(const Angles& a, const std::vector<std::uint16_t>& group,
                                        int groups) {
   std::vector<std::vector<double>> near(static_cast<std::size_t>(groups)), far(near.size());
-  for (std::size_t i = 0; i < c.size(); i++) {
-    if (!usable(c, i) || group[i] >= groups) continue;
-    const double h = std::hypot(c.x[i], c.y[i]);
-    (h >= kFarRange ? far : near)[group[i]].push_back(std::atan2(c.z[i], h));
+  for (std::size_t i = 0; i < a.ok.size(); i++) {
+    if (!a.ok[i] || group[i] >= groups) continue;
+    (a.h[i] >= kFarRange ? far : near)[group[i]].push_back(a.el[i]);
   }
   std::vector<double> out(near.size(), std::nan(""));
   for (std::size_t g = 0; g < out.size(); g++) {
@@ -49,6 +70,13 @@ std::vector<double> measuredElevations(const PointCloud& c, const std::vector<st
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<double> measuredElevations(const PointCloud& c, const std::vector<std::uint16_t>& group,
+                                       int groups) {
+  return measuredElevations(anglesOf(c), group, groups);
 }
 
 namespace {
@@ -80,15 +108,15 @@ std::vector<int> rowsByElevation(std::vector<double> elev, std::vector<double>& 
 /// full revolution since the sweep's first point; the exact split within +-kSeam of that turn
 /// (the first point need not lie on the scan's seam) is where the elevation changes from the
 /// one laser's to the next's.
-int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
+int firingOrderLasers(const PointCloud& c, const Angles& a, std::vector<std::uint16_t>& laser) {
   constexpr double kSeam = 5.0 * M_PI / 180.0;
   const std::size_t n = c.size();
   std::vector<double> turned(n, 0.0), elev(n, 0.0);
   double total = 0, prev = 0;
   bool started = false;
   for (std::size_t i = 0; i < n; i++) {
-    if (usable(c, i)) {
-      const double az = std::atan2(c.y[i], c.x[i]);
+    if (a.ok[i]) {
+      const double az = a.az[i];
       if (started) {
         double d = az - prev;
         if (d > M_PI) d -= kTwoPi;
@@ -97,13 +125,14 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
       }
       prev = az;
       started = true;
-      elev[i] = std::atan2(c.z[i], std::hypot(c.x[i], c.y[i]));
     }
     turned[i] = total;
   }
   const double sign = total >= 0 ? 1.0 : -1.0;
   const double revolutions = sign * total / kTwoPi;
   if (revolutions < 3.0 || revolutions > 4096.0) return 0;
+  for (std::size_t i = 0; i < n; i++)  // (in float, as this rule was tuned)
+    if (a.ok[i]) elev[i] = std::atan2(c.z[i], std::hypot(c.x[i], c.y[i]));
   laser.resize(n);
   int lasers = 0;
   for (std::size_t i = 0; i < n; i++) {
@@ -144,7 +173,7 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
       laser[j] = static_cast<std::uint16_t>(j < split ? b - 1 : b);
     i = end;
   }
-  const std::vector<double> e = measuredElevations(c, laser, lasers);
+  const std::vector<double> e = measuredElevations(a, laser, lasers);
   int down = 0, up = 0;
   for (std::size_t k = 1; k < e.size(); k++) {
     if (e[k] < e[k - 1]) down++;
@@ -157,16 +186,16 @@ int firingOrderLasers(const PointCloud& c, std::vector<std::uint16_t>& laser) {
 
 /// Marks the points of each laser after it has turned a full revolution since its first point
 /// (the sector a sweep of more than 360 degrees scans a second time); returns how many.
-std::size_t markRepeated(const PointCloud& c, const std::vector<std::uint16_t>& laser, int lasers,
+std::size_t markRepeated(const Angles& a, const std::vector<std::uint16_t>& laser, int lasers,
                          std::vector<std::uint8_t>& repeated) {
   std::size_t count = 0;
   const auto nl = static_cast<std::size_t>(lasers);
   std::vector<double> turned(nl, 0.0), last_az(nl, std::nan(""));
-  repeated.assign(c.size(), 0);
-  for (std::size_t i = 0; i < c.size(); i++) {
-    if (!usable(c, i) || laser[i] >= nl) continue;
+  repeated.assign(a.ok.size(), 0);
+  for (std::size_t i = 0; i < a.ok.size(); i++) {
+    if (!a.ok[i] || laser[i] >= nl) continue;
     const auto q = laser[i];
-    const double az = std::atan2(c.y[i], c.x[i]);
+    const double az = a.az[i];
     if (!std::isnan(last_az[q])) {
       double d = az - last_az[q];
       if (d > M_PI) d -= kTwoPi;
@@ -191,18 +220,19 @@ std::size_t markRepeated(const PointCloud& c, const std::vector<std::uint16_t>& 
 /// distances spread less than 2 m). The points between consecutive anchor returns n firings
 /// apart take positions 1 .. n x period - 1 in increasing order, with the fewest elevation
 /// misfits (dynamic programming). Fills `laser` (cycle position) and `elevations`.
-int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
-                       const std::vector<double>& elev, const std::vector<std::size_t>& pts,
+int firingPeriodLasers(const PointCloud& c, const Angles& a, const std::vector<double>& beam,
                        std::vector<std::uint16_t>& laser, std::vector<double>& elevations) {
   constexpr double kIsolated = 0.25 * M_PI / 180.0;
   const std::size_t n = c.size();
   // The anchor: the most populated beam with no other beam within kIsolated.
   std::vector<std::size_t> count(beam.size(), 0);
-  for (std::size_t k = 0; k < pts.size(); k++) {
-    const auto it = std::lower_bound(beam.begin(), beam.end(), elev[k]);
+  for (std::size_t i = 0; i < n; i++) {
+    if (!a.ok[i]) continue;
+    const double e = a.el[i];
+    const auto it = std::lower_bound(beam.begin(), beam.end(), e);
     std::size_t j = static_cast<std::size_t>(it - beam.begin());
-    if (j == beam.size() || (j > 0 && elev[k] - beam[j - 1] < beam[j] - elev[k])) j--;
-    if (std::abs(elev[k] - beam[j]) < 0.3 * kIsolated) count[j]++;
+    if (j == beam.size() || (j > 0 && e - beam[j - 1] < beam[j] - e)) j--;
+    if (std::abs(e - beam[j]) < 0.3 * kIsolated) count[j]++;
   }
   std::vector<std::size_t> candidates;  // isolated beams, most populated first
   for (std::size_t j = 0; j < beam.size(); j++) {
@@ -223,10 +253,10 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
     const double ae = beam[cand];
     std::vector<std::size_t> o;
     std::vector<double> az;
-    for (std::size_t k = 0; k < pts.size(); k++)
-      if (std::abs(elev[k] - ae) < 0.3 * kIsolated) {
-        o.push_back(pts[k]);
-        az.push_back(std::atan2(c.y[pts[k]], c.x[pts[k]]));
+    for (std::size_t i = 0; i < n; i++)
+      if (a.ok[i] && std::abs(a.el[i] - ae) < 0.3 * kIsolated) {
+        o.push_back(i);
+        az.push_back(a.az[i]);
       }
     if (o.size() < 64) continue;
     std::vector<double> st;
@@ -266,8 +296,8 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
     if (occ[k] - occ[k - 1] != period || std::abs(steps[k - 1] - step) >= 0.4 * step) continue;
     for (std::size_t q = 0; q < period; q++) {
       const std::size_t i = occ[k - 1] + q;
-      if (!usable(c, i)) continue;
-      const double h = std::hypot(c.x[i], c.y[i]);
+      if (!a.ok[i]) continue;
+      const double h = a.h[i];
       s1[q] += 1;
       sh[q] += h;
       sz[q] += c.z[i];
@@ -289,13 +319,11 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
   elevations.assign(period, std::nan(""));
   for (std::size_t q = 0; q < period; q++)
     if (s1[q] > 0) elevations[q] = std::atan(tan_el[q]);
-  std::vector<float> hz(n, -1.0f);  // horizontal distance (>= 1 m), -1 for unusable points
-  for (std::size_t i = 0; i < n; i++)
-    if (usable(c, i)) hz[i] = std::max(1.0f, std::hypot(c.x[i], c.y[i]));
   auto misfit = [&](std::size_t i, int q) {
-    if (hz[i] < 0) return 0.0;
+    if (!a.ok[i]) return 0.0;
+    const double h = std::max(1.0, a.h[i]);
     const auto qi = static_cast<std::size_t>(q % P);
-    return std::abs(c.z[i] - (hz[i] * tan_el[qi] + offset[qi])) / hz[i];
+    return std::abs(c.z[i] - (h * tan_el[qi] + offset[qi])) / h;
   };
   // Align the points between consecutive anchor returns (and before the first / after the last)
   // to the positions in order. Point j of m can only take positions j .. slots - m + j: the
@@ -363,40 +391,33 @@ int firingPeriodLasers(const PointCloud& c, const std::vector<double>& beam,
 ///     vertical offset, and the points of the other cycles are aligned to the positions in order.
 /// 0 lasers when it fails (under 4 beams, no isolated beam firing once per firing, fewer than 8
 /// complete cycles). `elevations` receives each laser's fitted elevation [rad].
-int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, RecoveredRows& out,
-                      std::vector<double>& elevations) {
+int firingCycleLasers(const PointCloud& c, const Angles& a, std::vector<std::uint16_t>& laser,
+                      RecoveredRows& out, std::vector<double>& elevations) {
   constexpr double kBin = 0.01 * M_PI / 180.0, kSigma = 3.0;  // bins
   constexpr double kMinSeparation = 0.07 * M_PI / 180.0;
   constexpr double kNear = 2.0;  // [m] nearer points (the vehicle, a laser's offset) are not used
-  const std::size_t n = c.size();
-  std::vector<std::size_t> pts;  // usable points, in stored order
-  std::vector<double> elev, hor;
-  pts.reserve(n);
+  std::size_t usable_points = 0;
   double total = 0, prev = 0;
-  for (std::size_t i = 0; i < n; i++) {
-    if (!usable(c, i)) continue;
-    const double az = std::atan2(c.y[i], c.x[i]);
-    if (!pts.empty()) {
-      double d = az - prev;
+  for (std::size_t i = 0; i < c.size(); i++) {
+    if (!a.ok[i]) continue;
+    if (usable_points++ > 0) {
+      double d = a.az[i] - prev;
       if (d > M_PI) d -= kTwoPi;
       if (d < -M_PI) d += kTwoPi;
       total += d;
     }
-    prev = az;
-    pts.push_back(i);
-    hor.push_back(std::hypot(c.x[i], c.y[i]));
-    elev.push_back(std::atan2(c.z[i], hor.back()));
+    prev = a.az[i];
   }
   const double revolutions = std::abs(total) / kTwoPi;
-  if (pts.size() < 256 || revolutions < 0.25 || revolutions > 2.5) return 0;
+  if (usable_points < 256 || revolutions < 0.25 || revolutions > 2.5) return 0;
 
   // a. Beams from the far points' elevation histogram.
   constexpr int kBins = static_cast<int>(M_PI / kBin) + 1;
   std::vector<double> hist(static_cast<std::size_t>(kBins), 0.0);
   auto binOf = [&](double e) { return static_cast<int>((e + M_PI / 2) / kBin); };
-  for (std::size_t k = 0; k < pts.size(); k++)
-    if (hor[k] >= kNear) {
-      const int b = binOf(elev[k]);
+  for (std::size_t i = 0; i < c.size(); i++)
+    if (a.ok[i] && a.h[i] >= kNear) {
+      const int b = binOf(a.el[i]);
       if (b >= 0 && b < kBins) hist[static_cast<std::size_t>(b)] += 1.0;
     }
   const int half = static_cast<int>(3 * kSigma);
@@ -426,22 +447,20 @@ int firingCycleLasers(const PointCloud& c, std::vector<std::uint16_t>& laser, Re
   }
   if (beam.size() < 4 || beam.size() > 1024) return 0;
   std::sort(beam.begin(), beam.end());
-  const int lasers = firingPeriodLasers(c, beam, elev, pts, laser, elevations);
-  if (lasers > 0) out.repeated = markRepeated(c, laser, lasers, out.second_pass);
+  const int lasers = firingPeriodLasers(c, a, beam, laser, elevations);
+  if (lasers > 0) out.repeated = markRepeated(a, laser, lasers, out.second_pass);
   return lasers;
 }
 
 /// Rule 3: `rows` beam elevations from the peaks of the far points' elevation histogram, or an
 /// empty table when it does not show `rows` separate peaks.
-std::vector<double> histogramTable(const PointCloud& c, int rows) {
+std::vector<double> histogramTable(const Angles& a, int rows) {
   constexpr double kBin = 0.02 * M_PI / 180.0, kMinSeparation = 0.15 * M_PI / 180.0;
   constexpr int kBins = static_cast<int>(M_PI / kBin) + 1;  // -90..+90 degrees
   std::vector<double> hist(static_cast<std::size_t>(kBins), 0.0);
-  for (std::size_t i = 0; i < c.size(); i++) {
-    if (!usable(c, i)) continue;
-    const double h = std::hypot(c.x[i], c.y[i]);
-    if (h < kFarRange) continue;
-    const int b = static_cast<int>((std::atan2(c.z[i], h) + M_PI / 2) / kBin);
+  for (std::size_t i = 0; i < a.ok.size(); i++) {
+    if (!a.ok[i] || a.h[i] < kFarRange) continue;
+    const int b = static_cast<int>((a.el[i] + M_PI / 2) / kBin);
     if (b >= 0 && b < kBins) hist[static_cast<std::size_t>(b)] += 1.0;
   }
   std::vector<double> smooth(hist.size(), 0.0);
@@ -508,7 +527,9 @@ const char* toString(RowSource s) {
   return "?";
 }
 
-int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers) {
+namespace {
+
+int estimateColumns(const Angles& a, const std::vector<std::uint16_t>& laser, int lasers) {
   const int fallback = lasers <= 16 ? 1800 : 2048;
   std::vector<std::size_t> count(static_cast<std::size_t>(lasers) + 1, 0);
   for (auto l : laser) count[std::min<std::size_t>(l, count.size() - 1)]++;
@@ -517,8 +538,8 @@ int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& l
   if (count[best] < 64) return fallback;
   std::vector<double> az;
   az.reserve(count[best]);
-  for (std::size_t i = 0; i < cloud.size(); i++)
-    if (laser[i] == best && usable(cloud, i)) az.push_back(std::atan2(cloud.y[i], cloud.x[i]));
+  for (std::size_t i = 0; i < a.ok.size(); i++)
+    if (laser[i] == best && a.ok[i]) az.push_back(a.az[i]);
   std::sort(az.begin(), az.end());
   std::vector<double> steps;
   for (std::size_t i = 1; i < az.size(); i++)
@@ -528,11 +549,18 @@ int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& l
   return static_cast<int>(std::clamp(cols, 64.0, 16384.0));
 }
 
+}  // namespace
+
+int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers) {
+  return estimateColumns(anglesOf(cloud), laser, lasers);
+}
+
 RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint) {
   cloud.validate();
   cloud.row.clear();
   cloud.col.clear();
   RecoveredRows out;
+  const Angles angles = anglesOf(cloud);
   std::vector<std::uint16_t> laser;
   std::vector<double> fitted;  // rule 3: each laser's fitted elevation (its vertical offset apart)
   int lasers = 0;
@@ -541,10 +569,10 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     lasers = laser.empty() ? 0 : *std::max_element(laser.begin(), laser.end()) + 1;
     out.source = RowSource::RingField;
   } else {
-    lasers = firingOrderLasers(cloud, laser);
+    lasers = firingOrderLasers(cloud, angles, laser);
     out.source = RowSource::FiringOrder;
     if (lasers == 0) {
-      lasers = firingCycleLasers(cloud, laser, out, fitted);
+      lasers = firingCycleLasers(cloud, angles, laser, out, fitted);
       out.source = RowSource::FiringCycle;
     }
   }
@@ -552,7 +580,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   if (lasers > 0 && hint && lasers < hint->rows) {
     // Fewer lasers than the sensor has (a partial sweep, blocked beams): each takes the row of
     // the nearest beam of the hint's table, if no two lasers claim the same row.
-    const std::vector<double> e = measuredElevations(cloud, laser, lasers);
+    const std::vector<double> e = measuredElevations(angles, laser, lasers);
     const std::vector<double> table = hint->rowElevations();
     const SphericalProjection eq1(*hint);
     std::vector<int> to_row(static_cast<std::size_t>(lasers), -1);
@@ -577,9 +605,9 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   if (lasers > 0 && (!hint || hint->rows == lasers)) {
     std::vector<double> table;
     const std::vector<int> to_row =
-        rowsByElevation(fitted.empty() ? measuredElevations(cloud, laser, lasers) : fitted, table);
+        rowsByElevation(fitted.empty() ? measuredElevations(angles, laser, lasers) : fitted, table);
     out.sensor = withTable(hint, std::move(table), "recovered rows");
-    if (!hint) out.sensor.cols = estimateColumns(cloud, laser, lasers);
+    if (!hint) out.sensor.cols = estimateColumns(angles, laser, lasers);
     cloud.row.resize(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); i++)
       cloud.row[i] = static_cast<std::uint16_t>(to_row[laser[i]]);
@@ -590,7 +618,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     throw std::invalid_argument(
         "the cloud has no ring field and is not stored laser by laser, so its rows cannot be "
         "recovered without a sensor model (rows, cols)");
-  std::vector<double> table = histogramTable(cloud, hint->rows);
+  std::vector<double> table = histogramTable(angles, hint->rows);
   if (!table.empty()) {
     out.source = RowSource::EstimatedTable;
     out.sensor = withTable(hint, std::move(table), "estimated table");
