@@ -241,7 +241,7 @@ int firingPeriodLasers(const PointCloud& c, const Angles& a, const std::vector<d
     if (lo && hi) candidates.push_back(j);
   }
   std::sort(candidates.begin(), candidates.end(),
-            [&](std::size_t a, std::size_t b) { return count[a] > count[b]; });
+            [&](std::size_t x, std::size_t y) { return count[x] > count[y]; });
   if (candidates.size() > 8) candidates.resize(8);
   // Each candidate: its returns, the azimuth step of one firing, the period; the candidate with
   // the most complete cycles is the anchor.
