@@ -212,6 +212,29 @@ std::size_t markRepeated(const Angles& a, const std::vector<std::uint16_t>& lase
   return count;
 }
 
+/// The local maxima (>= 3) of a smoothed elevation histogram (`bin` [rad] a bin, from -90
+/// degrees), highest first, each kept when at least `min_separation` [rad] from every one kept
+/// before; at most `max_peaks`. Elevations [rad] in the order kept.
+std::vector<double> histogramPeaks(const std::vector<double>& smooth, double bin,
+                                   double min_separation, std::size_t max_peaks) {
+  std::vector<std::pair<double, int>> peaks;  // (height, bin)
+  for (std::size_t b = 1; b + 1 < smooth.size(); b++) {
+    const double v = smooth[b];
+    if (v >= 3 && v > smooth[b - 1] && v >= smooth[b + 1])
+      peaks.emplace_back(v, static_cast<int>(b));
+  }
+  std::sort(peaks.begin(), peaks.end(), std::greater<>());
+  std::vector<double> kept;
+  for (const auto& [v, b] : peaks) {
+    if (kept.size() == max_peaks) break;
+    const double e = (b + 0.5) * bin - M_PI / 2;
+    if (std::all_of(kept.begin(), kept.end(),
+                    [&](double t) { return std::abs(t - e) >= min_separation; }))
+      kept.push_back(e);
+  }
+  return kept;
+}
+
 /// Rule 3, step b: the anchor is the isolated beam (no other within kIsolated) with the most
 /// complete cycles among the 8 most populated ones whose returns step one firing in azimuth (the
 /// median step, under 2 degrees); the period is the largest gap between its returns one firing
@@ -430,21 +453,7 @@ int firingCycleLasers(const PointCloud& c, const Angles& a, std::vector<std::uin
       for (int k = -half; k <= half; k++)
         smooth[static_cast<std::size_t>(b + k)] +=
             hist[static_cast<std::size_t>(b)] * kernel[static_cast<std::size_t>(k + half)];
-  std::vector<std::pair<double, int>> peaks;  // (height, bin)
-  for (int b = 1; b + 1 < kBins; b++) {
-    const double v = smooth[static_cast<std::size_t>(b)];
-    if (v >= 3 && v > smooth[static_cast<std::size_t>(b - 1)] &&
-        v >= smooth[static_cast<std::size_t>(b + 1)])
-      peaks.emplace_back(v, b);
-  }
-  std::sort(peaks.begin(), peaks.end(), std::greater<>());
-  std::vector<double> beam;  // elevation [rad] per beam
-  for (const auto& [v, b] : peaks) {
-    const double e = (b + 0.5) * kBin - M_PI / 2;
-    if (std::all_of(beam.begin(), beam.end(),
-                    [&](double t) { return std::abs(t - e) >= kMinSeparation; }))
-      beam.push_back(e);
-  }
+  std::vector<double> beam = histogramPeaks(smooth, kBin, kMinSeparation, 1025);  // [rad]
   if (beam.size() < 4 || beam.size() > 1024) return 0;
   std::sort(beam.begin(), beam.end());
   const int lasers = firingPeriodLasers(c, a, beam, laser, elevations);
@@ -467,22 +476,8 @@ std::vector<double> histogramTable(const Angles& a, int rows) {
   for (int b = 2; b + 2 < kBins; b++)
     for (int k = -2; k <= 2; k++)
       smooth[static_cast<std::size_t>(b)] += hist[static_cast<std::size_t>(b + k)];
-  std::vector<std::pair<double, int>> peaks;  // (height, bin)
-  for (int b = 1; b + 1 < kBins; b++) {
-    const double v = smooth[static_cast<std::size_t>(b)];
-    if (v >= 3 && v > smooth[static_cast<std::size_t>(b - 1)] &&
-        v >= smooth[static_cast<std::size_t>(b + 1)])
-      peaks.emplace_back(v, b);
-  }
-  std::sort(peaks.begin(), peaks.end(), std::greater<>());
-  std::vector<double> table;
-  for (const auto& [v, b] : peaks) {
-    const double e = (b + 0.5) * kBin - M_PI / 2;
-    const bool apart = std::all_of(table.begin(), table.end(),
-                                   [&](double t) { return std::abs(t - e) >= kMinSeparation; });
-    if (apart) table.push_back(e);
-    if (static_cast<int>(table.size()) == rows) break;
-  }
+  std::vector<double> table =
+      histogramPeaks(smooth, kBin, kMinSeparation, static_cast<std::size_t>(rows));
   if (static_cast<int>(table.size()) != rows) return {};
   std::sort(table.begin(), table.end(), std::greater<>());
   return table;
