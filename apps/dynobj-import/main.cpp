@@ -89,6 +89,11 @@ int run(int argc, char** argv) {
       "invalid); %zu odometry observations\n",
       s.sweeps, s.rows, s.cols, s.source.c_str(), out.getValue().c_str(), s.rows_from.c_str(),
       s.intensity.c_str(), s.points, s.pixels, s.hidden, s.outside_fov, s.invalid, s.odometry);
+  if (s.second_pass)
+    std::printf(
+        "  %zu points scanned twice (sweeps of more than one revolution: each pixel keeps the "
+        "first pass)\n",
+        s.second_pass);
   return 0;
 }
 

@@ -76,6 +76,7 @@ std::string ProjectionStats::toString() const {
   ss << input_points << " points -> " << pixels_set << " pixels (" << hidden << " hidden, "
      << outside_fov << " outside FOV, " << invalid << " invalid";
   if (bad_intensity) ss << ", " << bad_intensity << " bad intensities";
+  if (second_pass) ss << ", " << second_pass << " scanned twice";
   ss << ")";
   return ss.str();
 }
@@ -208,7 +209,9 @@ ProjectionStats SphericalProjection::organize(const PointCloud& cloud, LidarFram
       st.invalid++;
       continue;
     }
-    insertPoint(cloud, i, r, c, frame, st, second_pass && (*second_pass)[i]);
+    const bool again = second_pass && (*second_pass)[i];
+    st.second_pass += again;
+    insertPoint(cloud, i, r, c, frame, st, again);
   }
   st.pixels_set = frame.validCount();
   return st;

@@ -217,6 +217,7 @@ TEST(SphericalProjection, SecondPassOnlyFillsPixelsTheFirstLeftEmpty) {
   const auto st = p.organize(cloud, f, &second);
   EXPECT_EQ(st.pixels_set, 2u);
   EXPECT_EQ(st.hidden, 1u);
+  EXPECT_EQ(st.second_pass, 2u);
   EXPECT_EQ(f.source_index(0, 0), 0);
   EXPECT_FLOAT_EQ(f.range(0, 0), 3.0f);
   EXPECT_EQ(f.source_index(1, 1), 2);

@@ -69,6 +69,7 @@ class SweepWriter {
     s.points += st.input_points;
     s.pixels += st.pixels_set;
     s.hidden += st.hidden;
+    s.second_pass += st.second_pass;
     s.outside_fov += st.outside_fov;
     s.invalid += st.invalid;
     s.rows = frame.rows();

@@ -26,6 +26,7 @@ struct ProjectionStats {
   std::size_t outside_fov = 0;    ///< points above/below the vertical field of view
   std::size_t invalid = 0;        ///< NaN/inf coordinates or a point at the origin (not mapped)
   std::size_t bad_intensity = 0;  ///< non-finite or negative intensity, stored as 0
+  std::size_t second_pass = 0;    ///< points of a sector the sweep scanned again (organize())
   std::string toString() const;
 };
 

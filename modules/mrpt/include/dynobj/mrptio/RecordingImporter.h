@@ -40,6 +40,7 @@ struct ImportOptions {
 
 struct ImportSummary {
   std::size_t sweeps = 0, points = 0, pixels = 0, hidden = 0, outside_fov = 0, invalid = 0;
+  std::size_t second_pass = 0;  ///< points of sweeps over 360 degrees scanned a second time
   int rows = 0, cols = 0;
   /// how the rows were found: sweeps per rule ("firing order 153, estimated beam table 1"), or
   /// "metadata beam table"
