@@ -30,23 +30,24 @@ double median(std::vector<double>& v) {
 }
 
 /// Each point's angles, computed once for every rule: the azimuth (atan2 of the float
-/// coordinates), the horizontal distance and the elevation over it [rad, m]; `ok` = usable.
+/// coordinates; empty when not asked for), the horizontal distance and the elevation over it
+/// [rad, m]; `ok` = usable.
 struct Angles {
   std::vector<char> ok;
   std::vector<double> az, h, el;
 };
 
-Angles anglesOf(const PointCloud& c) {
+Angles anglesOf(const PointCloud& c, bool azimuth = true) {
   Angles a;
   const std::size_t n = c.size();
   a.ok.assign(n, 0);
-  a.az.assign(n, 0.0);
+  if (azimuth) a.az.assign(n, 0.0);
   a.h.assign(n, 0.0);
   a.el.assign(n, 0.0);
   for (std::size_t i = 0; i < n; i++) {
     if (!usable(c, i)) continue;
     a.ok[i] = 1;
-    a.az[i] = std::atan2(c.y[i], c.x[i]);
+    if (azimuth) a.az[i] = std::atan2(c.y[i], c.x[i]);
     a.h[i] = std::hypot(c.x[i], c.y[i]);
     a.el[i] = std::atan2(static_cast<double>(c.z[i]), a.h[i]);
   }
@@ -76,7 +77,7 @@ std::vector<double> measuredElevations(const Angles& a, const std::vector<std::u
 
 std::vector<double> measuredElevations(const PointCloud& c, const std::vector<std::uint16_t>& group,
                                        int groups) {
-  return measuredElevations(anglesOf(c), group, groups);
+  return measuredElevations(anglesOf(c, false), group, groups);
 }
 
 namespace {
@@ -524,7 +525,10 @@ const char* toString(RowSource s) {
 
 namespace {
 
-int estimateColumns(const Angles& a, const std::vector<std::uint16_t>& laser, int lasers) {
+/// estimateColumns() with `azimuth(i)`: point i's azimuth [rad], NaN when it is not usable (only
+/// the best-covered laser's points are asked).
+template <class Azimuth>
+int columnsFromAzimuths(const std::vector<std::uint16_t>& laser, int lasers, Azimuth&& azimuth) {
   const int fallback = lasers <= 16 ? 1800 : 2048;
   std::vector<std::size_t> count(static_cast<std::size_t>(lasers) + 1, 0);
   for (auto l : laser) count[std::min<std::size_t>(l, count.size() - 1)]++;
@@ -533,8 +537,11 @@ int estimateColumns(const Angles& a, const std::vector<std::uint16_t>& laser, in
   if (count[best] < 64) return fallback;
   std::vector<double> az;
   az.reserve(count[best]);
-  for (std::size_t i = 0; i < a.ok.size(); i++)
-    if (laser[i] == best && a.ok[i]) az.push_back(a.az[i]);
+  for (std::size_t i = 0; i < laser.size(); i++)
+    if (laser[i] == best) {
+      const double v = azimuth(i);
+      if (!std::isnan(v)) az.push_back(v);
+    }
   std::sort(az.begin(), az.end());
   std::vector<double> steps;
   for (std::size_t i = 1; i < az.size(); i++)
@@ -544,10 +551,21 @@ int estimateColumns(const Angles& a, const std::vector<std::uint16_t>& laser, in
   return static_cast<int>(std::clamp(cols, 64.0, 16384.0));
 }
 
+int estimateColumns(const PointCloud& c, const Angles& a, const std::vector<std::uint16_t>& laser,
+                    int lasers) {
+  return columnsFromAzimuths(laser, lasers, [&](std::size_t i) {
+    if (!a.ok[i]) return std::nan("");
+    return a.az.empty() ? static_cast<double>(std::atan2(c.y[i], c.x[i])) : a.az[i];
+  });
+}
+
 }  // namespace
 
 int estimateColumns(const PointCloud& cloud, const std::vector<std::uint16_t>& laser, int lasers) {
-  return estimateColumns(anglesOf(cloud), laser, lasers);
+  return columnsFromAzimuths(laser, lasers, [&](std::size_t i) {
+    return usable(cloud, i) ? static_cast<double>(std::atan2(cloud.y[i], cloud.x[i]))
+                            : std::nan("");
+  });
 }
 
 RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& hint) {
@@ -555,7 +573,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
   cloud.row.clear();
   cloud.col.clear();
   RecoveredRows out;
-  const Angles angles = anglesOf(cloud);
+  const Angles angles = anglesOf(cloud, !cloud.hasRing());  // rules 2-3 need the azimuths
   std::vector<std::uint16_t> laser;
   std::vector<double> fitted;  // rule 3: each laser's fitted elevation (its vertical offset apart)
   int lasers = 0;
@@ -602,7 +620,7 @@ RecoveredRows recoverRows(PointCloud& cloud, const std::optional<SensorModel>& h
     const std::vector<int> to_row =
         rowsByElevation(fitted.empty() ? measuredElevations(angles, laser, lasers) : fitted, table);
     out.sensor = withTable(hint, std::move(table), "recovered rows");
-    if (!hint) out.sensor.cols = estimateColumns(angles, laser, lasers);
+    if (!hint) out.sensor.cols = estimateColumns(cloud, angles, laser, lasers);
     cloud.row.resize(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); i++)
       cloud.row[i] = static_cast<std::uint16_t>(to_row[laser[i]]);
