@@ -11,9 +11,10 @@
 //                     azimuth has turned a full revolution since the sweep's first point;
 //  3. firing cycle  — the cloud is in the order the lasers fired (raw packet order: every laser
 //                     once per firing, cycle after cycle, no-returns left out): the beams are the
-//                     peaks of the far points' elevations, the cycle their most frequent order,
-//                     each point's laser the cycle position after the previous point's that fits
-//                     its elevation (with each laser's fitted vertical offset); in a sweep of
+//                     peaks of the points' elevations; an isolated beam's returns one firing apart
+//                     give the number of lasers (their largest gap) and, over the complete
+//                     cycles, each position's elevation and vertical offset; the points between
+//                     its returns take the positions in order (fewest misfits); in a sweep of
 //                     more than one revolution the first pass holds the pixels and the sector's
 //                     second pass only fills the ones it left empty (RecoveredRows::second_pass);
 //  4. estimated table — the elevation histogram of the sweep's far points has one peak per beam;
