@@ -10,7 +10,7 @@
 #   scripts/accuracy/accuracy-matrix.sh [-j N] [-n FRAMES] [--seeds "1 2 3 4 5"] [--scenarios "hall plaza"]
 #                                       [--sensors "vlp-16 os0-64"] [--distortion both|off|on]
 #                                       [--intensity auto|scenario|ouster|velodyne] [-c detector.ini]
-#                                       [-o OUT]
+#                                       [--realism none|harsh] [-o OUT]
 #                                       [--keep] [--no-build]
 #
 # DYNOBJ_BUILD_DIR (default build/) is built first unless --no-build; DYNOBJ_BIN_DIR (default
@@ -20,14 +20,16 @@
 # the detector and use another -o). Sim outputs are deleted once scored (--keep keeps them).
 # --intensity auto (default) gives Velodyne presets (vlp-*, hdl-*) Velodyne 0-255 intensities and
 # Ouster presets Ouster signal; `scenario` keeps what each scenario says; `ouster` / `velodyne`
-# force one model everywhere. Also reachable as
+# force one model everywhere. --realism harsh simulates every cell with the simulator's realism
+# traits on (mixed returns at edges, per-beam gains, retro-reflectors, lost packets, walkers'
+# gait: docs/simulator.md). Also reachable as
 # `scripts/accuracy/accuracy.sh --matrix ...`. Output: OUT/matrix.md, OUT/cells.tsv (one line per cell).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 source "$HERE/../common.sh"
 
 # One cell (internal: the script calls itself through xargs). Environment: BIN, OUT, FRAMES,
-# CONFIG, KEEP, INTENSITY.
+# CONFIG, KEEP, INTENSITY, REALISM.
 if [ "${1:-}" = "--cell" ]; then
   scen="$2" sensor="$3" seed="$4" md="$5"
   dir="$OUT/cells/$scen/$sensor/s$seed-$md"
@@ -38,6 +40,7 @@ if [ "${1:-}" = "--cell" ]; then
     auto) sets+=(--set "intensity.model=$(intensity_model_of "$sensor")") ;;
     ouster|velodyne) sets+=(--set "intensity.model=$INTENSITY") ;;
   esac
+  [ "$REALISM" = none ] || sets+=(--set "realism=$REALISM")
   t0=$(date +%s)
   if ! "$BIN/dynobj-sim" -s "$DYNOBJ_ROOT/share/dynobj/scenarios/$scen.yaml" -o "$dir/sim" \
        --frames "$FRAMES" --seed "$seed" "${sets[@]}" --compression 0 -q > "$dir/sim.log" 2>&1 ||
@@ -58,7 +61,7 @@ if [ "${1:-}" = "--cell" ]; then
   exit 0
 fi
 
-JOBS=1 FRAMES=100 SEEDS="1 2 3 4 5" SCENARIOS="" SENSORS="" DISTORTION=both INTENSITY=auto KEEP=0
+JOBS=1 FRAMES=100 SEEDS="1 2 3 4 5" SCENARIOS="" SENSORS="" DISTORTION=both INTENSITY=auto REALISM=none KEEP=0
 BUILD_IT=1 OUT="${DYNOBJ_MATRIX_OUT:-$DYNOBJ_ROOT/out/matrix}"
 CONFIG="$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini"
 while [ $# -gt 0 ]; do
@@ -70,6 +73,7 @@ while [ $# -gt 0 ]; do
     --sensors) SENSORS="$2"; shift 2 ;;
     --distortion) DISTORTION="$2"; shift 2 ;;
     --intensity) INTENSITY="$2"; shift 2 ;;
+    --realism) REALISM="$2"; shift 2 ;;
     -c) CONFIG="$(realpath "$2")"; shift 2 ;;
     -o) OUT="$(realpath -m "$2")"; shift 2 ;;
     --keep) KEEP=1; shift ;;
@@ -82,6 +86,7 @@ case "$DISTORTION" in both) MDS="nomd md" ;; off) MDS="nomd" ;; on) MDS="md" ;;
   *) echo "--distortion: both, off or on" >&2; exit 2 ;; esac
 case "$INTENSITY" in auto|scenario|ouster|velodyne) ;;
   *) echo "--intensity: auto, scenario, ouster or velodyne" >&2; exit 2 ;; esac
+case "$REALISM" in none|harsh) ;; *) echo "--realism: none or harsh" >&2; exit 2 ;; esac
 [ -n "$SCENARIOS" ] || SCENARIOS="$(cd "$DYNOBJ_ROOT/share/dynobj/scenarios" && ls *.yaml | sed 's/\.yaml$//' | tr '\n' ' ')"
 [ -n "$SENSORS" ] || SENSORS="$(cd "$DYNOBJ_ROOT/share/dynobj/sensors" && ls *.ini | sed 's/\.ini$//' | tr '\n' ' ')"
 for s in $SCENARIOS; do [ -f "$DYNOBJ_ROOT/share/dynobj/scenarios/$s.yaml" ] || { echo "no scenario '$s'" >&2; exit 2; }; done
@@ -95,7 +100,7 @@ fi
 command -v jq >/dev/null || { echo "accuracy-matrix.sh needs jq" >&2; exit 1; }
 mkdir -p "$OUT/cells"
 BIN="${DYNOBJ_BIN_DIR:-$BUILD/apps}"
-export BIN OUT FRAMES CONFIG KEEP INTENSITY
+export BIN OUT FRAMES CONFIG KEEP INTENSITY REALISM
 
 cells=()
 for scen in $SCENARIOS; do for sensor in $SENSORS; do for seed in $SEEDS; do for md in $MDS; do
@@ -113,7 +118,7 @@ wall=$(( $(date +%s) - t0 ))
   for c in "${cells[@]}"; do set -- $c; f="$OUT/cells/$1/$2/s$3-$4/result.tsv"; [ -f "$f" ] && cat "$f"; done
 } > "$OUT/cells.tsv"
 done_cells=$(( $(wc -l < "$OUT/cells.tsv") - 1 ))
-cmd="scripts/accuracy/accuracy-matrix.sh -n $FRAMES --seeds \"$SEEDS\" --distortion $DISTORTION --intensity $INTENSITY -j $JOBS"
+cmd="scripts/accuracy/accuracy-matrix.sh -n $FRAMES --seeds \"$SEEDS\" --distortion $DISTORTION --intensity $INTENSITY -j $JOBS$([ "$REALISM" = none ] || echo " --realism $REALISM")"
 shipped=0  # the table names the configuration: the shipped one by its name, a given one in full
 [ "$CONFIG" = "$DYNOBJ_ROOT/share/dynobj/config/dynobj.ini" ] && shipped=1
 "$HERE/accuracy-matrix-table.sh" "$OUT/cells.tsv" "$cmd" "$wall" "${#cells[@]}" "$([ $shipped = 1 ] && basename "$CONFIG" || echo "$CONFIG")" "$shipped" > "$OUT/matrix.md.partial"

@@ -15,6 +15,7 @@ namespace dynobj::sim {
 using detail::intersectPart;
 using detail::placed;
 using detail::swayed;
+using detail::swung;
 
 struct LidarSimulator::Posed {
   Part part;  ///< in world coordinates
@@ -90,7 +91,8 @@ void LidarSimulator::poseWorld(double t, std::vector<Posed>& out) const {
   for (const Part& p : s_.statics) add(swayed(p, t, static_cast<std::uint32_t>(out.size())), -1);
   for (const Actor& a : s_.actors) {
     const Pose2 pose = a.track.at(t);
-    for (const Part& p : a.parts) add(placed(p, pose), a.id);
+    const double speed = a.track.speed(t);
+    for (const Part& p : a.parts) add(placed(swung(p, t, speed, a.id), pose), a.id);
   }
 }
 
@@ -116,7 +118,10 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
   core::PointCloud cloud;
   cloud.reserve(static_cast<std::size_t>(H) * static_cast<std::size_t>(W), true, true);
   std::vector<std::int16_t> hit_actor;
+  std::vector<std::uint8_t> hit_moving;
   hit_actor.reserve(cloud.x.capacity());
+  hit_moving.reserve(cloud.x.capacity());
+  const cv::Mat_<std::uint8_t> lost = lostPixels(sweep_key);
   std::vector<Posed> world;
   std::vector<const Posed*> cand;
   std::vector<double> moving_at(s_.actors.size(), 0);
@@ -151,6 +156,7 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
       const double az = -M_PI + (c + 0.5) * 2 * M_PI / W;  // Eq. (1) column centre
       const double ca = std::cos(az), sa = std::sin(az);
       for (int r = 0; r < H; r++) {
+        if (!lost.empty() && lost(r, c)) continue;
         const double el = row_elev_[static_cast<std::size_t>(r)];
         double cb = ca, sb = sa;  // this beam's azimuth: the column's, plus the unit's error
         if (!s_.beam_azimuth_error.empty()) {
@@ -180,9 +186,12 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
           }
         if (!mat || best.t < sm.min_range) continue;
         const double cosi = std::abs(best.normal.dot(ray.dir));
-        const double refl = reflectivity(*mat, best.uv) * best.gain;
+        const double refl =
+            reflectivity(*mat, best.uv) * best.gain * (mat->retro ? kRetroGain : 1.0);
+        const double beam_gain =
+            s_.realism.beam_gain.empty() ? 1.0 : s_.realism.beam_gain[static_cast<std::size_t>(r)];
         const double expected = s_.intensity_gain * refl * (0.3 + 0.7 * cosi) *
-                                rangeGain(best.t, s_.intensity_near_range);
+                                rangeGain(best.t, s_.intensity_near_range) * beam_gain;
         if (uni(rng) < s_.dropout) continue;                    // random no-return
         if (cosi < s_.grazing_cos && uni(rng) < 0.8) continue;  // grazing incidence
         if (expected < 3.0) continue;                           // too weak to detect
@@ -193,7 +202,7 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
           inten = std::max(0.0, std::round(expected * (1.0 + s_.intensity_noise * gauss(rng)) +
                                            std::sqrt(expected) * 0.5 * gauss(rng)));
         } else {  // Velodyne calibrated reflectivity: 100 = white diffuse, range-compensated
-          const double v = 100.0 * refl * (0.4 + 0.6 * cosi);
+          const double v = 100.0 * refl * (0.4 + 0.6 * cosi) * beam_gain;
           inten = std::clamp(std::round(v * (1.0 + s_.intensity_noise * gauss(rng)) + gauss(rng)),
                              0.0, 255.0);
         }
@@ -202,15 +211,19 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
                         static_cast<float>(p.z()), static_cast<float>(inten),
                         static_cast<std::uint16_t>(r), static_cast<std::uint16_t>(c));
         hit_actor.push_back(static_cast<std::int16_t>(actor));
-        if (actor >= 0 && moving_at[static_cast<std::size_t>(actor)]) sw.dynamic(r, c) = 255;
+        hit_moving.push_back(actor >= 0 && moving_at[static_cast<std::size_t>(actor)]);
       }
     }
   }
+  if (s_.realism.beam_divergence > 0 || s_.realism.interstitial > 0)
+    mixEdges(cloud, hit_actor, hit_moving, sweep_key);
 
   core::SphericalProjection(sm).organize(cloud, sw.frame);
   sw.frame.timestamp_ns = sw.timestamp_ns;
-  for (std::size_t i = 0; i < hit_actor.size(); i++)
+  for (std::size_t i = 0; i < hit_actor.size(); i++) {
     sw.actor(cloud.row[i], cloud.col[i]) = hit_actor[i];
+    if (hit_moving[i]) sw.dynamic(cloud.row[i], cloud.col[i]) = 255;
+  }
 
   for (const Actor& a : s_.actors) {
     ActorState st;
@@ -228,6 +241,107 @@ SimulatedSweep LidarSimulator::simulate(int index) const {
     sw.actors.push_back(st);
   }
   return sw;
+}
+
+cv::Mat_<std::uint8_t> LidarSimulator::lostPixels(std::uint64_t sweep_key) const {
+  const Realism& re = s_.realism;
+  if (re.packet_loss <= 0 && re.dropout_runs <= 0) return {};
+  const int H = s_.sensor.rows, W = s_.sensor.cols, P = re.packet_columns;
+  cv::Mat_<std::uint8_t> lost(H, W, std::uint8_t{0});
+  std::mt19937 rng(static_cast<std::uint32_t>(sweep_key ^ (sweep_key >> 32)) ^ 0x10575u);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  // Markov chain along the firing order (the head turns clockwise from column W-1): a run
+  // starts with probability `start` and goes on with probability 1 - 1 / mean_length.
+  const auto runs = [&](double start, double mean_length, int step, auto&& drop) {
+    bool on = false;
+    for (int first = W - 1; first >= 0; first -= step) {
+      on = on ? uni(rng) >= 1.0 / mean_length : uni(rng) < start;
+      if (on) drop(first);
+    }
+  };
+  if (re.packet_loss > 0)
+    runs(re.packet_loss, re.packet_burst, P, [&](int first) {
+      for (int c = first; c > first - P && c >= 0; c--) lost.col(c).setTo(255);
+    });
+  if (re.dropout_runs > 0) {
+    // A share d of the pixels in runs of mean length L: d = s L / (1 + s L) per start s.
+    const double L = re.dropout_run_length, start = re.dropout_runs / (L * (1 - re.dropout_runs));
+    for (int r = 0; r < H; r++) runs(start, L, 1, [&](int c) { lost(r, c) = 255; });
+  }
+  return lost;
+}
+
+void LidarSimulator::mixEdges(core::PointCloud& cloud, std::vector<std::int16_t>& actor,
+                              std::vector<std::uint8_t>& moving, std::uint64_t sweep_key) const {
+  const Realism& re = s_.realism;
+  const int H = s_.sensor.rows, W = s_.sensor.cols;
+  cv::Mat_<int> idx(H, W, -1);
+  std::vector<double> range(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); i++) {
+    idx(cloud.row[i], cloud.col[i]) = static_cast<int>(i);
+    range[i] = std::sqrt(double(cloud.x[i]) * cloud.x[i] + double(cloud.y[i]) * cloud.y[i] +
+                         double(cloud.z[i]) * cloud.z[i]);
+  }
+  std::mt19937 rng(static_cast<std::uint32_t>(sweep_key ^ (sweep_key >> 32)) ^ 0x313Du);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double step = 2 * M_PI / W, half = 0.5 * re.beam_divergence;
+  struct Change {
+    int i, from;
+    double f;  ///< share of point i's footprint on point `from`'s surface; < 0: interstitial at -f
+  };
+  std::vector<Change> changes;
+  for (int r = 0; r < H; r++)
+    for (int c = 0; c < W; c++) {
+      const int a = idx(r, c), b = idx(r, (c + 1) % W);
+      if (a < 0 || b < 0 || std::abs(range[a] - range[b]) < 0.05) continue;
+      const double e = step * uni(rng);  // the edge, from a's beam centre towards b's
+      const double fa = half > 0 ? std::clamp((half - e) / re.beam_divergence, 0.0, 0.5) : 0.0;
+      const double fb =
+          half > 0 ? std::clamp((half - (step - e)) / re.beam_divergence, 0.0, 0.5) : 0.0;
+      if (re.interstitial > 0 && std::abs(range[a] - range[b]) >= re.echo_separation &&
+          uni(rng) < re.interstitial) {
+        // A point between the two surfaces (as measured on real sweeps: anywhere in between).
+        changes.push_back({e < 0.5 * step ? a : b, e < 0.5 * step ? b : a, -uni(rng)});
+        continue;
+      }
+      if (fa > 0) changes.push_back({a, b, fa});
+      if (fb > 0) changes.push_back({b, a, fb});
+    }
+  // Every change reads the unmixed ranges; a point with an edge on both sides keeps the larger.
+  std::sort(changes.begin(), changes.end(), [](const Change& x, const Change& y) {
+    return x.i != y.i ? x.i < y.i : std::abs(x.f) > std::abs(y.f);
+  });
+  const std::vector<float> intensity = cloud.intensity;
+  const std::vector<std::int16_t> actor0 = actor;
+  const std::vector<std::uint8_t> moving0 = moving;
+  for (std::size_t k = 0; k < changes.size(); k++) {
+    if (k > 0 && changes[k].i == changes[k - 1].i) continue;
+    const auto i = static_cast<std::size_t>(changes[k].i);
+    const auto j = static_cast<std::size_t>(changes[k].from);
+    double f = changes[k].f, r_new = range[i];
+    if (f < 0) {  // interstitial: at a share -f of the way from the near surface to the far one
+      const double near = std::min(range[i], range[j]), far = std::max(range[i], range[j]);
+      r_new = near - f * (far - near);
+      f = 0.5;
+    } else {
+      const double wi = (1 - f) * std::max(1.0f, intensity[i]);
+      const double wj = f * std::max(1.0f, intensity[j]);
+      if (std::abs(range[i] - range[j]) < re.echo_separation)  // one echo: energy-weighted range
+        r_new = (wi * range[i] + wj * range[j]) / (wi + wj);
+      else if (wj > wi)  // two echoes: the stronger is reported
+        r_new = range[j];
+    }
+    if (r_new == range[i]) continue;
+    const auto scale = static_cast<float>(r_new / range[i]);
+    cloud.x[i] *= scale;
+    cloud.y[i] *= scale;
+    cloud.z[i] *= scale;
+    cloud.intensity[i] = std::round((1 - f) * intensity[i] + f * intensity[j]);
+    if (std::abs(r_new - range[j]) < std::abs(r_new - range[i])) {
+      actor[i] = actor0[j];
+      moving[i] = moving0[j];
+    }
+  }
 }
 
 }  // namespace dynobj::sim

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PartOps.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dynobj::sim::detail {
@@ -59,6 +60,16 @@ Part swayed(const Part& p, double t, std::uint32_t uid) {
   Part out = p;
   out.porous.center.x() += p.sway * std::sin(w + ph1);
   out.porous.center.y() += p.sway * std::sin(0.83 * w + ph2);
+  return out;
+}
+
+Part swung(const Part& p, double t, double speed, int actor) {
+  if (p.swing == 0 || p.kind != Part::Kind::Cylinder) return p;
+  std::uint64_t st = 0x6A17ULL + static_cast<std::uint64_t>(actor);
+  const double phase = 2 * M_PI * uniform01(st);
+  const double stride = std::min(1.0, speed / 1.4);
+  Part out = p;
+  out.cylinder.center.x() += p.swing * stride * std::sin(2 * M_PI * 0.9 * t + phase);
   return out;
 }
 

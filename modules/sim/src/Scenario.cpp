@@ -101,7 +101,8 @@ const char* toString(ActorClass c) {
   return "?";
 }
 
-std::vector<Part> actorBody(ActorClass cls, double height, const Material& material) {
+std::vector<Part> actorBody(ActorClass cls, double height, const Material& material,
+                            const Realism& realism) {
   std::vector<Part> parts;
   auto box = [&](double x, double y, double z, double sx, double sy, double sz) {
     Part p;
@@ -110,19 +111,43 @@ std::vector<Part> actorBody(ActorClass cls, double height, const Material& mater
     p.material = material;
     parts.push_back(p);
   };
-  auto cyl = [&](double x, double y, double r, double z0, double z1, double albedo_scale) {
+  auto cyl = [&](double x, double y, double r, double z0, double z1, double albedo_scale,
+                 double swing = 0) {
     Part p;
     p.kind = Part::Kind::Cylinder;
     p.cylinder = {{x, y}, r, z0, z1};
     p.material = material;
     p.material.albedo = std::clamp(material.albedo * albedo_scale, 0.02, 1.0);
+    p.swing = swing;
     parts.push_back(p);
+  };
+  // Licence plates (520 x 110 mm, EU) front and back, retro-reflective.
+  auto plates = [&](double half_length, double z) {
+    if (!realism.retro_reflectors) return;
+    for (const double x : {half_length + 0.01, -half_length - 0.01}) {
+      Part p;
+      p.kind = Part::Kind::Box;
+      p.box = {{x, 0, z}, {0.01, 0.26, 0.055}, 0.0};
+      p.material = Material{};
+      p.material.albedo = 0.8;
+      p.material.pattern = Pattern::Plain;
+      p.material.retro = true;
+      parts.push_back(p);
+    }
   };
   const double s = height / 1.75;
   switch (cls) {
     case ActorClass::Pedestrian:  // legs, torso, head (different albedos: clothes vs skin)
-      cyl(0, 0.1, 0.08 * s, 0.0, 0.85 * s, 0.7);
-      cyl(0, -0.1, 0.08 * s, 0.0, 0.85 * s, 0.7);
+      if (realism.gait) {  // each leg a thigh and a shin, swinging opposite; arms opposite legs
+        for (const double side : {1.0, -1.0}) {
+          cyl(0, 0.1 * side, 0.08 * s, 0.45 * s, 0.85 * s, 0.7, 0.12 * s * side);
+          cyl(0, 0.1 * side, 0.07 * s, 0.0, 0.45 * s, 0.7, 0.3 * s * side);
+          cyl(0, 0.26 * side * s, 0.045 * s, 0.8 * s, 1.45 * s, 1.0, -0.15 * s * side);
+        }
+      } else {
+        cyl(0, 0.1, 0.08 * s, 0.0, 0.85 * s, 0.7);
+        cyl(0, -0.1, 0.08 * s, 0.0, 0.85 * s, 0.7);
+      }
       cyl(0, 0, 0.2 * s, 0.85 * s, 1.5 * s, 1.0);
       cyl(0, 0, 0.1 * s, 1.52 * s, 1.75 * s, 1.6);
       break;
@@ -134,6 +159,7 @@ std::vector<Part> actorBody(ActorClass cls, double height, const Material& mater
     case ActorClass::Car:
       box(0, 0, 0.3 + 0.5 * s, 4.4, 1.8, 1.0 * s);        // body
       box(-0.3, 0, 0.3 + 1.225 * s, 2.4, 1.6, 0.45 * s);  // cabin on top of the body
+      plates(2.2, 0.3 + 0.3 * s);
       break;
   }
   return parts;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The scenario keys of real-world clutter (trees, bushes, fences) and of real sensor traits
 // (intensity model, per-unit beam errors, output format). Format: docs/simulator.md.
+#include <algorithm>
 #include <cmath>
 
 #include "ScenarioLoader.h"
@@ -53,6 +54,69 @@ void Loader::loadSensorUnit(const YamlView& root) {
   for (std::size_t r = 0; r < rows; r++) {
     s_.beam_elevation_error[r] = se * g(rng);
     s_.beam_azimuth_error[r] = sa * g(rng);
+  }
+}
+
+void Loader::loadRealism(const YamlView& root) {
+  if (!root.has("realism")) return;
+  const YamlView v = root.child("realism");
+  Realism& r = s_.realism;
+  // Column firings in one data packet: an Ouster packet holds 16 columns; a Velodyne packet 12
+  // blocks of 32 lasers (VLP-16: 24 columns, HDL-32E 12, HDL-64E 6, VLS-128 3).
+  r.packet_columns = s_.intensity_model == IntensityModel::Velodyne
+                         ? std::max(1, 384 / std::max(1, s_.sensor.rows))
+                         : 16;
+  const bool velodyne = s_.intensity_model == IntensityModel::Velodyne;
+  const auto harsh = [&r, velodyne] {  // defaults measured on real captures: docs/simulator.md
+    r.beam_divergence = 3.0e-3;
+    r.interstitial = 0.07;
+    r.beam_gain_sigma = velodyne ? 0.18 : 0.09;
+    r.retro_reflectors = true;
+    r.dropout_runs = 0.04;
+    r.gait = true;
+  };
+  const auto profile = [&](const YamlView& p) {
+    const std::string name = p.scalar();
+    if (name == "harsh")
+      harsh();
+    else if (name != "none")
+      p.fail("unknown realism profile '" + name + "' (none, harsh)");
+  };
+  if (!v.isMap()) {
+    profile(v);
+  } else {
+    v.onlyKeys({"profile", "beam_divergence_mrad", "echo_separation", "interstitial",
+                "beam_gain_sigma", "retro_reflectors", "dropout_runs", "dropout_run_length",
+                "packet_loss", "packet_burst", "gait", "seed"});
+    if (v.has("profile")) profile(v.child("profile"));
+    r.beam_divergence = v.num("beam_divergence_mrad", r.beam_divergence * 1e3) * 1e-3;
+    r.echo_separation = v.num("echo_separation", r.echo_separation);
+    r.interstitial = v.num("interstitial", r.interstitial);
+    r.beam_gain_sigma = v.num("beam_gain_sigma", r.beam_gain_sigma);
+    r.retro_reflectors = v.flag("retro_reflectors", r.retro_reflectors);
+    r.dropout_runs = v.num("dropout_runs", r.dropout_runs);
+    r.dropout_run_length = v.num("dropout_run_length", r.dropout_run_length);
+    r.packet_loss = v.num("packet_loss", r.packet_loss);
+    r.packet_burst = v.num("packet_burst", r.packet_burst);
+    r.gait = v.flag("gait", r.gait);
+    const auto share = [&v](const char* key, double x) {
+      if (!(x >= 0 && x < 1)) v.child(key).fail("must be in [0, 1)");
+    };
+    if (r.beam_divergence < 0) v.child("beam_divergence_mrad").fail("must be >= 0");
+    if (!(r.echo_separation > 0)) v.child("echo_separation").fail("must be > 0");
+    share("interstitial", r.interstitial);
+    if (r.beam_gain_sigma < 0) v.child("beam_gain_sigma").fail("must be >= 0");
+    share("dropout_runs", r.dropout_runs);
+    if (!(r.dropout_run_length >= 1)) v.child("dropout_run_length").fail("must be >= 1");
+    share("packet_loss", r.packet_loss);
+    if (!(r.packet_burst >= 1)) v.child("packet_burst").fail("must be >= 1");
+  }
+  if (r.beam_gain_sigma > 0) {  // its own generator, as for sensor_unit
+    const auto seed = static_cast<std::uint32_t>(v.isMap() ? v.num("seed", s_.seed) : s_.seed);
+    std::mt19937 rng(seed ^ 0x6A1Bu);
+    std::normal_distribution<double> g(0.0, 1.0);
+    r.beam_gain.resize(static_cast<std::size_t>(s_.sensor.rows));
+    for (double& k : r.beam_gain) k = std::exp(r.beam_gain_sigma * g(rng));
   }
 }
 

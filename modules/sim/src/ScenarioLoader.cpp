@@ -40,9 +40,11 @@ double positive(const YamlView& v, const std::string& key, double def) {
 }
 
 void Loader::load(const YamlView& root) {
-  root.onlyKeys({"name", "seed", "frames", "start_time", "sensor", "sensor_label", "mount", "noise",
-                 "intensity", "sensor_unit", "output", "motion_distortion", "moving_speed",
-                 "odometry", "floor", "static", "actors", "platform", "procedural"});
+  root.onlyKeys({"name",         "seed",         "frames",     "start_time",
+                 "sensor",       "sensor_label", "mount",      "noise",
+                 "intensity",    "sensor_unit",  "output",     "motion_distortion",
+                 "moving_speed", "odometry",     "floor",      "static",
+                 "actors",       "platform",     "procedural", "realism"});
   s_.name = root.str("name", s_.name);
   s_.seed = static_cast<std::uint32_t>(root.num("seed", s_.seed));
   s_.frames = static_cast<int>(root.num("frames", s_.frames));
@@ -65,6 +67,7 @@ void Loader::load(const YamlView& root) {
   loadIntensity(root);
   loadSensorUnit(root);
   loadOutput(root);
+  loadRealism(root);
   s_.motion_distortion = root.flag("motion_distortion", s_.motion_distortion);
   s_.moving_speed = root.num("moving_speed", s_.moving_speed);
   if (root.has("odometry")) {
@@ -165,7 +168,8 @@ void Loader::loadStatic(const YamlView& item) {
     b.onlyKeys({"center", "yaw_deg"});
     const Eigen::Vector2d c = vec2(b, "center");
     const double yaw = b.num("yaw_deg", 0) * kDeg;
-    for (Part p : actorBody(ActorClass::Car, 1.5, material(item, 0.35, Pattern::Noise, 0.5))) {
+    for (Part p :
+         actorBody(ActorClass::Car, 1.5, material(item, 0.35, Pattern::Noise, 0.5), s_.realism)) {
       const Eigen::Vector3d local = p.box.center;
       p.box.center = {c.x() + std::cos(yaw) * local.x() - std::sin(yaw) * local.y(),
                       c.y() + std::sin(yaw) * local.x() + std::cos(yaw) * local.y(), local.z()};
@@ -251,7 +255,7 @@ void Loader::loadActors(const YamlView& a) {
     actor.cls = cls;
     const double h = drawRange(a, "height", default_h, rng_);
     const double start = drawRange(t, "start", 0.0, rng_);
-    actor.parts = actorBody(cls, h, material(a, 0.35, Pattern::Noise, 0.15));
+    actor.parts = actorBody(cls, h, material(a, 0.35, Pattern::Noise, 0.15), s_.realism);
     actor.track = track(t, start);
     s_.actors.push_back(std::move(actor));
   }

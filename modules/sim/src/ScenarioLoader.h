@@ -37,6 +37,8 @@ class Loader {
   void loadIntensity(const YamlView& root);
   void loadSensorUnit(const YamlView& root);
   void loadOutput(const YamlView& root);
+  /// `realism: harsh` or a map of traits (`profile: harsh` first, then each key overrides).
+  void loadRealism(const YamlView& root);
   Material material(const YamlView& owner, double albedo, Pattern pattern, double scale,
                     const std::string& key = "material");
   void loadFloor(const YamlView& root);

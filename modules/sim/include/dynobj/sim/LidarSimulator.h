@@ -4,6 +4,7 @@
 #pragma once
 
 #include <dynobj/core/LidarFrame.h>
+#include <dynobj/core/PointCloud.h>
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -51,6 +52,14 @@ class LidarSimulator {
  private:
   struct Posed;  // a part in world coordinates
   void poseWorld(double t, std::vector<Posed>& out) const;
+  /// Pixels of a sweep with no return whatever they face (Realism: lost packets, runs of
+  /// dropouts along a row), 255 = lost; empty when neither trait is on.
+  cv::Mat_<std::uint8_t> lostPixels(std::uint64_t sweep_key) const;
+  /// Mixed returns where a beam's footprint straddles a depth edge (Realism::beam_divergence)
+  /// and interstitial points between the two surfaces (Realism::interstitial):
+  /// moves points, their intensity and their ground truth (`actor`, `moving`, per point).
+  void mixEdges(core::PointCloud& cloud, std::vector<std::int16_t>& actor,
+                std::vector<std::uint8_t>& moving, std::uint64_t sweep_key) const;
 
   Scenario s_;
   std::vector<double> row_elev_;

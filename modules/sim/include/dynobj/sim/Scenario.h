@@ -45,6 +45,32 @@ struct Part {
   Material material;
   double sway = 0;       ///< [m] amplitude of the horizontal sway of foliage (wind)
   double sway_hz = 0.3;  ///< [Hz] its frequency
+  /// [m] a walker's limb swings along the actor's x by this much at walking speed (legs and arms,
+  /// the sign giving the side); 0 = rigid.
+  double swing = 0;
+};
+
+/// Traits of real sensors that make the judge harder (`realism:`, docs/simulator.md gives each
+/// default and the real capture or manual it comes from). All off unless asked for;
+/// `realism: harsh` turns each on at its default.
+struct Realism {
+  /// [rad] horizontal width of a beam's footprint; > 0: a footprint straddling a depth edge
+  /// returns one mixed echo (surfaces closer than `echo_separation` in range) or the stronger.
+  double beam_divergence = 0;
+  double echo_separation = 1.0;  ///< [m] two surfaces closer than this give one mixed echo
+  /// Share of depth edges (jumps over `echo_separation`) with a point somewhere in between.
+  double interstitial = 0;
+  /// Spread (sigma of the log) of each beam's intensity gain: a unit's lasers differ.
+  double beam_gain_sigma = 0;
+  std::vector<double> beam_gain;  ///< drawn per image row from the seed (empty = all 1)
+  bool retro_reflectors = false;  ///< licence plates on cars, far brighter than a white wall
+  /// No-returns in runs along a row: the share of pixels lost and the mean run [pixels].
+  double dropout_runs = 0;
+  double dropout_run_length = 4.5;
+  double packet_loss = 0;   ///< probability that a lost burst of packets starts at a packet
+  double packet_burst = 1;  ///< mean packets lost in one burst (geometric)
+  int packet_columns = 16;  ///< columns in one packet (Ouster 16, Velodyne 384 / rows)
+  bool gait = false;        ///< walkers swing their legs and arms
 };
 
 struct Actor {
@@ -73,6 +99,7 @@ struct Scenario {
   /// This unit's beams: per image row, the error of its elevation and azimuth from the preset's
   /// nominal table [rad], drawn from the seed (`sensor_unit:`); empty = a perfect unit.
   std::vector<double> beam_elevation_error, beam_azimuth_error;
+  Realism realism;
   bool motion_distortion = false;   ///< columns fired over the sweep while everything moves
   double moving_speed = 0.2;        ///< [m/s] an actor faster than this is "dynamic"
   bool odometry = true;             ///< also write CObservationOdometry
@@ -107,7 +134,9 @@ struct Scenario {
                                const std::string& source = "scenario");
 };
 
-/// The body of an actor class, scaled to `height` [m].
-std::vector<Part> actorBody(ActorClass cls, double height, const Material& material);
+/// The body of an actor class, scaled to `height` [m]; `realism` adds swinging limbs (gait) and
+/// licence plates (retro-reflectors).
+std::vector<Part> actorBody(ActorClass cls, double height, const Material& material,
+                            const Realism& realism = {});
 
 }  // namespace dynobj::sim
