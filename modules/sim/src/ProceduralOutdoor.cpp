@@ -150,6 +150,44 @@ void buildStreet(WorldBuilder& w) {
     else
       w.walker(region, 0.8, 1.6, 3.0);
   }
+  // Dense traffic, only when asked (no draw otherwise: the scene stays the same). Riders in a
+  // group share a lane and a speed, 2.2-3 m apart, every other one 0.35 m nearer the kerb.
+  if (w.spec().rider_groups.lo > 0)
+    for (int g = w.count(w.spec().rider_groups, 0, 0); g > 0; g--)
+      for (int tries = 0; tries < 30; tries++) {
+        const double dir = w.chance(0.5) ? 1 : -1, speed = w.uni(3, 9), phase = w.uni(0, 1);
+        // The first rider s0 metres down the first straight (where the lanes of the riders,
+        // 0.7 m apart, are equally long).
+        const double end = len / 2 + 10, s0 = 20 + phase * (2 * end - 20);
+        const int riders = w.uniInt(3, 6);
+        double along = 0;  // behind the first rider, along the lane [m]
+        int added = 0;
+        for (int i = 0; i < riders; i++) {
+          const double kerb = road / 2 - (i % 2 ? 0.55 : 0.9);  // |y| of this rider's line
+          const double y = dir > 0 ? -kerb : kerb;
+          const std::vector<V2> loop{
+              {-dir * end, y}, {dir * end, y}, {dir * end, -y}, {-dir * end, -y}};
+          const double at = (s0 - along) / (4 * end + 4 * std::abs(y));
+          added +=
+              w.mover("cyclist", WorldBuilder::loopFrom(loop, at - std::floor(at)), speed, true, 0);
+          along += w.uni(2.2, 3.0);
+        }
+        if (added >= 2) break;
+      }
+  // Two-wheelers parked on the sidewalk by the kerb (a scooter or motorcycle: 1.9 x 0.7 x 1.1 m),
+  // 60 % with someone standing beside.
+  if (w.spec().two_wheelers.lo > 0)
+    for (int k = w.count(w.spec().two_wheelers, 0, 0); k > 0; k--) {
+      const double side = w.chance(0.5) ? 1 : -1, x = w.uni(-len / 2 + 5, len / 2 - 5);
+      const V2 p(x, side * (road / 2 + 1.6));
+      if (!w.isFree(p, 1.0)) continue;
+      const double yaw = w.uni(-20, 20) + (w.chance(0.5) ? 0 : 90), c = std::cos(yaw * M_PI / 180),
+                   sn = std::sin(yaw * M_PI / 180);
+      w.box(p.x(), p.y(), 1.9, 0.7, 1.1, yaw, w.material(0.1, 0.4, {"noise", "plain"}, 0.1, 0.3));
+      // Beside its long side, 0.35-0.6 m off it.
+      const double u = w.uni(-0.5, 0.5), v = (w.chance(0.5) ? 1 : -1) * (0.35 + w.uni(0.35, 0.6));
+      if (w.chance(0.6)) w.stander({p.x() + c * u - sn * v, p.y() + sn * u + c * v});
+    }
 }
 
 void buildPlaza(WorldBuilder& w) {

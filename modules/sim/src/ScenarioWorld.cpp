@@ -26,7 +26,8 @@ const YamlView* Loader::loadProcedural(const YamlView& root) {
   if (!root.has("procedural")) return nullptr;
   const YamlView v = root.child("procedural");
   v.onlyKeys({"kind", "size", "pedestrians", "cyclists", "cars", "trees", "bushes", "fences",
-              "pulling_out", "standing", "occupancy", "crossing", "platform"});
+              "pulling_out", "rider_groups", "two_wheelers", "standing", "occupancy", "crossing",
+              "platform"});
   ProceduralSpec spec;
   try {
     spec.kind = ProceduralSpec::kindFromString(v.child("kind").scalar());
@@ -44,6 +45,8 @@ const YamlView* Loader::loadProcedural(const YamlView& root) {
   spec.bushes = countOf(v, "bushes");
   spec.fences = countOf(v, "fences");
   spec.pulling_out = countOf(v, "pulling_out");
+  spec.rider_groups = countOf(v, "rider_groups");
+  spec.two_wheelers = countOf(v, "two_wheelers");
   spec.standing = v.num("standing", spec.standing);
   if (spec.standing < 0 || spec.standing > 1) v.child("standing").fail("must be in [0, 1]");
   spec.occupancy = v.num("occupancy", spec.occupancy);

@@ -215,3 +215,44 @@ TEST(Procedural, VehiclesNeverDriveThroughEachOtherOrSomeoneStanding) {
         }
     }
 }
+
+TEST(Procedural, DenseTrafficAddsRiderGroupsAndParkedTwoWheelersWithPeopleBeside) {
+  for (const std::uint32_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE(seed);
+    const Scenario plain = load(spec("street"), seed);
+    const Scenario dense =
+        load(spec("street", ", rider_groups: 2, two_wheelers: 8, standing: 0"), seed);
+    // Asked for nothing more, the street is the one it was (no extra draw).
+    EXPECT_EQ(plain.world_yaml, load(spec("street", ", rider_groups: 0"), seed).world_yaml);
+    // Riders in a group: cyclists 2.2-3 m apart at the same speed at some time.
+    int close_pairs = 0;
+    for (std::size_t i = 0; i < dense.actors.size(); i++)
+      for (std::size_t j = i + 1; j < dense.actors.size(); j++) {
+        const Actor &a = dense.actors[i], &b = dense.actors[j];
+        if (a.cls != ActorClass::Cyclist || b.cls != ActorClass::Cyclist) continue;
+        const Pose2 pa = a.track.at(1.0), pb = b.track.at(1.0);
+        const double d = std::hypot(pa.x - pb.x, pa.y - pb.y);
+        if (d > 1.5 && d < 3.5 && std::abs(a.track.speed(1.0) - b.track.speed(1.0)) < 1e-9)
+          close_pairs++;
+      }
+    EXPECT_GE(close_pairs, 2);
+    // Parked two-wheelers (1.9 x 0.7 m boxes) with someone standing within 1.2 m of most.
+    int bikes = 0, with_someone = 0;
+    for (const Part& p : dense.statics) {
+      if (p.kind != Part::Kind::Box || std::abs(p.box.half.x() - 0.95) > 1e-6 ||
+          std::abs(p.box.half.y() - 0.35) > 1e-6)
+        continue;
+      bikes++;
+      for (const Actor& a : dense.actors) {
+        const Pose2 at = a.track.at(0.0);
+        if (a.cls == ActorClass::Pedestrian && a.track.speed(0.0) == 0 &&
+            std::hypot(at.x - p.box.center.x(), at.y - p.box.center.y()) < 1.2) {
+          with_someone++;
+          break;
+        }
+      }
+    }
+    EXPECT_GE(bikes, 3);
+    EXPECT_GE(with_someone, 1);
+  }
+}

@@ -105,7 +105,7 @@ TEST(Scenario, ErrorsNameFileAndKey) {
 
 TEST(Scenario, EveryShippedScenarioLoads) {
   for (const char* name : {"hall", "corridor", "crossing", "street", "static", "plaza", "parking",
-                           "warehouse", "corner", "crowd"}) {
+                           "warehouse", "corner", "crowd", "traffic"}) {
     SCOPED_TRACE(name);
     const std::string path = std::string(DYNOBJ_SHARE_DIR) + "/scenarios/" + name + ".yaml";
     Scenario s;

@@ -22,7 +22,13 @@ struct ProceduralSpec {
   };
   Eigen::Vector2d size{0, 0};  ///< [m] extent along x, y; 0 = drawn from the kind's range
   Count pedestrians, cyclists, cars, trees, bushes, fences;
-  Count pulling_out;           ///< parking: parked cars that drive away during the sequence
+  Count pulling_out;  ///< parking: parked cars that drive away during the sequence
+  /// street: groups of 3-6 riders (two-wheelers) riding close together along the kerb; none by
+  /// default (0 = none drawn).
+  Count rider_groups;
+  /// street: two-wheelers parked on the sidewalk, most with someone standing beside; none by
+  /// default.
+  Count two_wheelers;
   double standing = 0.1;       ///< share of pedestrians that stand still all the time
   double occupancy = -1;       ///< parking: share of occupied slots; < 0 = drawn in [0.55, 0.85]
   bool crossing = false;       ///< street: a crossroad at x = 0
