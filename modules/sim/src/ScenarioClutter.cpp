@@ -74,6 +74,7 @@ void Loader::loadRealism(const YamlView& root) {
     r.retro_reflectors = true;
     r.dropout_runs = 0.04;
     r.gait = true;
+    r.body_motion = 0.15 * kDeg;
   };
   const auto profile = [&](const YamlView& p) {
     const std::string name = p.scalar();
@@ -87,7 +88,7 @@ void Loader::loadRealism(const YamlView& root) {
   } else {
     v.onlyKeys({"profile", "beam_divergence_mrad", "echo_separation", "interstitial",
                 "beam_gain_sigma", "retro_reflectors", "dropout_runs", "dropout_run_length",
-                "packet_loss", "packet_burst", "gait", "seed"});
+                "packet_loss", "packet_burst", "gait", "body_motion_deg", "seed"});
     if (v.has("profile")) profile(v.child("profile"));
     r.beam_divergence = v.num("beam_divergence_mrad", r.beam_divergence * 1e3) * 1e-3;
     r.echo_separation = v.num("echo_separation", r.echo_separation);
@@ -99,6 +100,8 @@ void Loader::loadRealism(const YamlView& root) {
     r.packet_loss = v.num("packet_loss", r.packet_loss);
     r.packet_burst = v.num("packet_burst", r.packet_burst);
     r.gait = v.flag("gait", r.gait);
+    r.body_motion = v.num("body_motion_deg", r.body_motion / kDeg) * kDeg;
+    if (r.body_motion < 0) v.child("body_motion_deg").fail("must be >= 0");
     const auto share = [&v](const char* key, double x) {
       if (!(x >= 0 && x < 1)) v.child(key).fail("must be in [0, 1)");
     };

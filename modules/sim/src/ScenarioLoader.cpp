@@ -90,6 +90,16 @@ void Loader::load(const YamlView& root) {
     const YamlView p = root.child("platform");
     loadPlatform(p, p.has("trajectory") || !world ? p : world->child("platform"));
   }
+  const double sway = s_.realism.body_motion;
+  if (sway > 0 && s_.bob_roll == 0 && s_.bob_pitch == 0 && s_.bob_height == 0) {
+    // A vehicle's body rolling and pitching on its suspension (1.5 Hz): amplitudes giving
+    // per-sweep changes of standard deviation `body_motion` at 10 Hz (robotPose()).
+    s_.bob_hz = 1.5;
+    const double step = 2 * M_PI * s_.bob_hz * 0.1 / std::sqrt(2.0);
+    s_.bob_pitch = sway / step;
+    s_.bob_roll = sway / (0.5 * step);
+    s_.bob_height = 0.01;
+  }
   for (const YamlView* src : {world, &root})
     if (src && src->has("actors"))
       for (const auto& item : src->seq("actors")) loadActors(item);

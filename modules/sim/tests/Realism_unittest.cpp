@@ -269,3 +269,27 @@ TEST(Realism, WalkersSwingTheirLegsAndStandersDoNot) {
   EXPECT_GT(spread("{type: waypoints, points: [[5, -4], [5, 4]], speed: 1.4, loop: false}"), 0.15);
   EXPECT_LT(spread("{type: stationary, at: [5, 0]}"), 0.02);
 }
+
+TEST(Realism, AMovingVehicleRollsAndPitchesOnItsSuspension) {
+  // Per-sweep changes of roll and pitch: standard deviation body_motion_deg (both axes pooled),
+  // none when the platform stands still or without the trait.
+  auto changeStd = [](const std::string& extra, const std::string& platform) {
+    const LidarSimulator sim(load(base(extra, platform)));
+    double sum2 = 0;
+    int n = 0;
+    for (int k = 0; k + 1 < 60; k++) {
+      const double t0 = k * 0.1, t1 = t0 + 0.1;
+      const Eigen::Matrix3d d = sim.robotPose(t0).linear().transpose() * sim.robotPose(t1).linear();
+      const double roll = std::atan2(d(2, 1), d(2, 2)), pitch = -std::asin(d(2, 0));
+      sum2 += roll * roll + pitch * pitch;
+      n += 2;
+    }
+    return std::sqrt(sum2 / n) / kDeg;
+  };
+  const std::string driving =
+      "{trajectory: {type: waypoints, points: [[0, 0], [100, 0]], speed: 8, loop: false}}";
+  const std::string parked = "{trajectory: {type: stationary, at: [0, 0]}}";
+  EXPECT_NEAR(changeStd("realism: {body_motion_deg: 0.15}\n", driving), 0.15, 0.05);
+  EXPECT_LT(changeStd("", driving), 1e-9);
+  EXPECT_LT(changeStd("realism: {body_motion_deg: 0.15}\n", parked), 1e-9);
+}

@@ -71,6 +71,9 @@ struct Realism {
   double packet_burst = 1;  ///< mean packets lost in one burst (geometric)
   int packet_columns = 16;  ///< columns in one packet (Ouster 16, Velodyne 384 / rows)
   bool gait = false;        ///< walkers swing their legs and arms
+  /// [rad] a platform without `bob` rolls and pitches on its suspension: the standard deviation
+  /// of the change per sweep at 10 Hz.
+  double body_motion = 0;
 };
 
 struct Actor {
