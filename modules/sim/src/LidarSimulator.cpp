@@ -91,7 +91,11 @@ void LidarSimulator::poseWorld(double t, std::vector<Posed>& out) const {
   for (const Part& p : s_.statics) add(swayed(p, t, static_cast<std::uint32_t>(out.size())), -1);
   for (const Actor& a : s_.actors) {
     const Pose2 pose = a.track.at(t);
-    const double speed = a.track.speed(t);
+    if (!s_.realism.gait) {
+      for (const Part& p : a.parts) add(placed(p, pose), a.id);
+      continue;
+    }
+    const double speed = a.track.speed(t);  // limbs swing with the walking speed
     for (const Part& p : a.parts) add(placed(swung(p, t, speed, a.id), pose), a.id);
   }
 }

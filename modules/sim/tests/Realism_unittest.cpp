@@ -28,12 +28,9 @@ std::string fineSensor() {
   return path;
 }
 
+
 std::string fine(const std::string& extra) {
-  std::string s = base(extra);
-  const std::string key = "sensor: ";
-  const auto at = s.find(key);
-  const auto end = s.find('\n', at);
-  return s.replace(at, end - at, key + fineSensor());
+  return base(extra, "{trajectory: {type: stationary, at: [0, 0]}}", fineSensor());
 }
 
 /// A wall 10 m ahead (x = 10), a person standing 5 m ahead.

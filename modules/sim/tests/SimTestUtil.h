@@ -25,8 +25,9 @@ inline std::string tinySensorFile() {
 /// A noiseless scenario: sensor at 1 m height, standing at the origin looking along +X.
 inline std::string base(
     const std::string& extra,
-    const std::string& platform = "{trajectory: {type: stationary, at: [0, 0]}}") {
-  return "name: t\nframes: 10\nsensor: " + tinySensorFile() +
+    const std::string& platform = "{trajectory: {type: stationary, at: [0, 0]}}",
+    const std::string& sensor_file = tinySensorFile()) {
+  return "name: t\nframes: 10\nsensor: " + sensor_file +
          "\nmount: [0, 0, 1.0]\nnoise: {range_sigma: 0, dropout: 0, grazing_cos: 0}\n"
          "odometry: {enabled: false}\n"
          "floor: {size: [100, 100]}\n"
