@@ -28,7 +28,6 @@ std::string fineSensor() {
   return path;
 }
 
-
 std::string fine(const std::string& extra) {
   return base(extra, "{trajectory: {type: stationary, at: [0, 0]}}", fineSensor());
 }
