@@ -154,12 +154,21 @@ void EgoMotionEstimator::detect(const LidarFrame& f, const cv::Mat_<float>& inte
                                 const cv::Mat_<std::uint8_t>& exclude, Features& out) {
   const int H = f.rows(), W = f.cols();
   intensity.convertTo(img8_, CV_8U);
-  // Keypoints only on returns at least `border` px away from any no-return, and off `exclude`.
+  // A no-return between returns above and below (a dropout along a row) is filled with their
+  // mean and does not count as a border: keypoints only on returns at least `border` px away
+  // from any other no-return, and off `exclude`.
+  cv::morphologyEx(f.valid, filled_, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_RECT, {1, 3}));
+  for (int r = 1; r + 1 < H; r++)
+    for (int c = 0; c < W; c++)
+      if (filled_(r, c) && !f.valid(r, c))
+        img8_.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(
+            (img8_.at<std::uint8_t>(r - 1, c) + img8_.at<std::uint8_t>(r + 1, c) + 1) / 2);
   if (p_.border > 0)
-    cv::erode(f.valid, mask_,
+    cv::erode(filled_, mask_,
               cv::getStructuringElement(cv::MORPH_RECT, {2 * p_.border + 1, 2 * p_.border + 1}));
   else
-    f.valid.copyTo(mask_);
+    filled_.copyTo(mask_);
   if (!exclude.empty()) mask_.setTo(0, exclude);
   // Room for ORB's margin, patch and border: wrap left/right (360 deg scan), reflect top/bottom.
   cv::Mat tmp;

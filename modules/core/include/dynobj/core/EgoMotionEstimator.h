@@ -60,6 +60,7 @@ class EgoMotionEstimator {
   bool have_prev_ = false;
   std::mt19937 rng_;
   cv::Mat img8_, padded_, mask_, mask_pad_;
+  cv::Mat_<std::uint8_t> filled_;  ///< returns, and no-returns between returns above and below
   std::vector<std::vector<int>> buckets_;
   PixelPitch pitch_;                 ///< the current sensor's
   std::vector<PointMatch> matches_;  ///< solve()'s matches (kept: no allocation per frame)
