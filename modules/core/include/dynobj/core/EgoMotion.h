@@ -18,7 +18,8 @@ struct EgoMotionParams : public StageParams {
   double ratio = 0.8;                 ///< Lowe ratio test
   int match_window = 64;              ///< [columns] match only keypoints this close in azimuth
                                       ///< (0 = all); on failure, all are tried before giving up
-  int border = 2;                     ///< [px] no keypoint this close to a no-return pixel
+  int border = 2;                     ///< [px] no keypoint this close to a no-return pixel (one
+                                      ///< between returns above and below does not count)
   double inlier_distance = 0.10;      ///< [m] RANSAC inlier threshold at close range ...
   double inlier_range_factor = 0.01;  ///< ... plus this fraction of the point's range
   /// [px] beyond the paper: a keypoint's pixel is uncertain by this much in each image direction,

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Paper III-B-1, Eq. (5): ego-motion between consecutive frames from ORB features of the
 // intensity image, lifted to 3D through the frame's pixel -> point map, then a rigid SE(3) by
-// RANSAC + closed-form least squares (Umeyama). Image preparation for a 64-row image: see
-// docs/algorithm.md (vertical x2 upsampling, 33 px wrap/reflect padding so ORB's 31 px border and
-// patch fit, a mask away from no-return borders and from the last frame's dynamic objects).
+// RANSAC + closed-form least squares (Umeyama). Image preparation: see docs/algorithm.md §3
+// (33 px wrap/reflect padding so ORB's 31 px border and patch fit; a mask away from no-return
+// borders, where a no-return between returns above and below is filled and no border, and away
+// from the last frame's dynamic objects).
 #pragma once
 
 #include <Eigen/Geometry>
