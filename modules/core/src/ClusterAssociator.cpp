@@ -20,6 +20,7 @@ void AssociationParams::visit(ParamVisitor& v) {
   v.value("split_rest_majority", split_rest_majority);
   v.value("split_hold_back", split_hold_back);
   v.value("movers_first", movers_first);
+  v.value("carve_dropped", carve_dropped);
 }
 
 void AssociationParams::validate() const {

@@ -164,9 +164,11 @@ void sortByCell(std::vector<std::pair<std::uint64_t, int>>& cells,
 }  // namespace
 
 void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& features,
-                        std::vector<Cluster>& out, std::vector<Cluster>* weak) {
+                        std::vector<Cluster>& out, std::vector<Cluster>* weak,
+                        std::vector<int>* dropped) {
   out.clear();
   if (weak) weak->clear();
+  if (dropped) dropped->clear();
   pixels_.clear();
   pts_.clear();
   const int n_px = f.rows() * f.cols();
@@ -188,8 +190,11 @@ void Clusterer::cluster(const LidarFrame& f, const cv::Mat_<std::uint8_t>& featu
       weak && p_.weak_min_points > 0 ? std::min(p_.weak_min_points, p_.min_points) : p_.min_points;
   for (std::size_t i = 0; i < pixels_.size(); i++) {
     const auto l = static_cast<std::size_t>(label[i]);
-    if (count_[l] < weak_min || count_[l] > p_.max_points) continue;
-    if (by_area && voxels_[l] > max_voxels) continue;
+    if (count_[l] < weak_min) continue;
+    if (count_[l] > p_.max_points || (by_area && voxels_[l] > max_voxels)) {
+      if (dropped) dropped->push_back(pixels_[i]);
+      continue;
+    }
     std::vector<Cluster>& dst = count_[l] < p_.min_points ? *weak : out;
     if (slot_[l] < 0) {
       slot_[l] = static_cast<int>(dst.size());

@@ -220,7 +220,7 @@ void DynamicObjectDetector::featuresAndClusters(const LidarFrame& frame) {
   foreground_.extractNormalized(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(), r.features);
   r.timings.foreground += clock.lap();
   // III-B-2, Eq. (6)-(7): clusters of the foreground points.
-  clusterer_.cluster(frame, r.features, clusters_, &weak_);
+  clusterer_.cluster(frame, r.features, clusters_, &weak_, &dropped_);
   r.timings.clustering = clock.lap();
 }
 
@@ -272,6 +272,7 @@ std::vector<int> DynamicObjectDetector::associate(const LidarFrame& frame, doubl
   // Eq. (9)-(13), beyond the paper: the movers first, a wider gate for a track with no velocity.
   std::vector<int> cluster_to_track = associator_.associateMoversFirst(
       centroidsOf(clusters_), predicted, tracks_.gates(associator_, dt), tracks_.movers());
+  carveMovers(frame, predicted, cluster_to_track);
   // Beyond the paper: a cluster holding a mover and an object at rest is split between them.
   held_.clear();
   const std::vector<int> split = splitSettled(split_, frame, frame_index_, chain_, tracks_.tracks(),
@@ -280,6 +281,38 @@ std::vector<int> DynamicObjectDetector::associate(const LidarFrame& frame, doubl
   findWeakSeeds(predicted, cluster_to_track);
   tracks_.update(frame_index_, clusters_, cluster_to_track);
   return split;
+}
+
+void DynamicObjectDetector::carveMovers(const LidarFrame& frame,
+                                        const std::vector<Eigen::Vector3d>& predicted,
+                                        std::vector<int>& cluster_to_track) {
+  if (!params_.association.carve_dropped || dropped_.empty() || !chain_.contains(frame_index_))
+    return;
+  const std::vector<Track>& tracks = tracks_.tracks();
+  std::vector<char> matched(tracks.size(), 0);
+  for (int t : cluster_to_track)
+    if (t >= 0) matched[static_cast<std::size_t>(t)] = 1;
+  const long past = std::max(chain_.oldest(), frame_index_ - free_space_.params().lookback);
+  if (past >= frame_index_) return;
+  Cluster one;
+  one.pixels.resize(1);
+  for (std::size_t t = 0; t < tracks.size(); t++) {
+    if (!tracks[t].dynamic || matched[t]) continue;
+    const Eigen::Vector3d& p = predicted[t];
+    const double reach = std::clamp(tracks[t].radius, 0.3, 3.0) + 0.2;
+    Cluster c;
+    for (int px : dropped_) {
+      const cv::Vec3f& q = frame.pointAt(px);
+      if (std::hypot(q[0] - p.x(), q[1] - p.y()) > reach) continue;
+      one.pixels[0] = px;
+      if (free_space_.evidence(frame, frame_index_, one, past, chain_).free > 0)
+        c.pixels.push_back(px);
+    }
+    if (static_cast<int>(c.pixels.size()) < params_.clustering.min_points) continue;
+    computeClusterShape(frame, c);
+    clusters_.push_back(std::move(c));
+    cluster_to_track.push_back(static_cast<int>(t));
+  }
 }
 
 void DynamicObjectDetector::findWeakSeeds(const std::vector<Eigen::Vector3d>& predicted,

@@ -103,6 +103,7 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
       t.state << c.x(), c.y(), 0, 0;
       t.cov = Eigen::Vector4d(r, r, 4.0, 4.0).asDiagonal();
       t.z = c.z();
+      t.radius = 0.5 * (clusters[m].max - clusters[m].min).head<2>().norm();
       t.cluster = static_cast<int>(m);
       t.window.reserve(window_ + 1);
       t.window.emplace_back(frame, c, clusters[m].end_a, clusters[m].end_b);
@@ -116,6 +117,7 @@ void TrackManager::update(long frame, const std::vector<Cluster>& clusters,
     t.cluster = static_cast<int>(m);
     t.missed = 0;
     t.z = c.z();
+    t.radius = 0.5 * (clusters[m].max - clusters[m].min).head<2>().norm();
     // Kalman update with the centroid (x, y).
     Eigen::Matrix<double, 2, 4> Hm = Eigen::Matrix<double, 2, 4>::Zero();
     Hm(0, 0) = Hm(1, 1) = 1;

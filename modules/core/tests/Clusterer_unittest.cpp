@@ -152,7 +152,12 @@ TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
     Clusterer(p).cluster(f, f.valid, out);
     ASSERT_EQ(out.size(), 1u) << search;
     EXPECT_EQ(out[0].pixels.size(), 40u) << search;
-    p.max_area = 3.0;  // both fit
+    std::vector<int> dropped;  // the sheet's 66 features, when asked for
+    Clusterer(p).cluster(f, f.valid, out, nullptr, &dropped);
+    EXPECT_EQ(out.size(), 1u) << search;
+    EXPECT_EQ(dropped.size(), 66u) << search;
+    for (int px : dropped) EXPECT_GE(px / f.cols(), 4) << search;  // rows 4-9: the sheet's
+    p.max_area = 3.0;                                              // both fit
     Clusterer(p).cluster(f, f.valid, out);
     EXPECT_EQ(out.size(), 2u) << search;
     p.max_area = 0;  // no limit

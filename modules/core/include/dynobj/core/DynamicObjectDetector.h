@@ -118,6 +118,11 @@ class DynamicObjectDetector {
   /// (Eq. 9-13; the movers first), a cluster holding a mover and an object at rest split
   /// (splitSettled: returned, per cluster), the weak seeds found, the tracks updated.
   std::vector<int> associate(const LidarFrame& frame, double dt);
+  /// A dynamic track that found no cluster, expected inside a cluster dropped for its size (a
+  /// walker touching a hedge): the dropped features around its prediction whose space the
+  /// lookback frame saw free become its cluster.
+  void carveMovers(const LidarFrame& frame, const std::vector<Eigen::Vector3d>& predicted,
+                   std::vector<int>& cluster_to_track);
   /// Beyond the paper (docs/algorithm.md §5): the dynamic tracks that `cluster_to_track` left
   /// without a cluster, associated with the weak clusters (fewer than min_points features) near
   /// their `predicted` centroids by the same gated association: weak_seeds_.
@@ -161,6 +166,7 @@ class DynamicObjectDetector {
 
   DetectionResult result_;
   std::vector<Cluster> clusters_, weak_;  ///< this frame's clusters; weak ones (findWeakSeeds)
+  std::vector<int> dropped_;              ///< feature pixels of the clusters dropped for their size
   std::vector<std::pair<int, std::size_t>> weak_seeds_;  ///< (track id, index in weak_)
   cv::Mat_<std::uint8_t> exclude_, prev_dynamic_;
   cv::Mat_<int> owner_;

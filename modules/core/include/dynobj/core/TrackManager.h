@@ -40,7 +40,8 @@ struct Track {
   Window window;     ///< observations (frame, centroid in that frame), at most k + 1
   Eigen::Vector4d state{0, 0, 0, 0};  ///< x, y, vx, vy in the current frame
   Eigen::Matrix4d cov = Eigen::Matrix4d::Identity();
-  double z = 0;  ///< last observed centroid height
+  double z = 0;       ///< last observed centroid height
+  double radius = 0;  ///< [m] half the horizontal diagonal of its last cluster's box
   bool dynamic = false;
   int positives = 0, negatives = 0;
   bool settled = false;  ///< judged static settled_frames times in a row since it last moved
