@@ -21,6 +21,16 @@ int flaggedCount(const DetectionResult& r) {
   return cv::countNonZero(r.dynamic);
 }
 
+/// Points of `f` flagged dynamic in `r` for which `in(point)` holds.
+template <class In>
+int flaggedWhere(const LidarFrame& f, const DetectionResult& r, In in) {
+  int n = 0;
+  for (int px = 0; px < f.rows() * f.cols(); px++)
+    n += f.isValid(px / f.cols(), px % f.cols()) && r.dynamic(px / f.cols(), px % f.cols()) &&
+         in(f.pointAt(px));
+  return n;
+}
+
 /// A post walking across the view at 1.5 m/s, 4 m ahead of a static sensor (external identity
 /// ego-motion), `tall` for its first `tall_frames` frames and `height` metres tall after them.
 /// Returns the pixels flagged in each frame.
@@ -84,15 +94,11 @@ std::vector<std::pair<int, int>> walkPast(bool past_surface_check) {
     scene.posts.push_back({4.3, 0.9, 0.25, 1.8});
     const LidarFrame f = dynobj::test::render(scene, s, true, 1000000000LL + 100000000LL * j);
     const DetectionResult& r = det.process(f, Eigen::Isometry3d::Identity());
-    std::pair<int, int> n{0, 0};
-    for (int px = 0; px < f.rows() * f.cols(); px++) {
-      const cv::Vec3f& q = f.pointAt(px);
-      if (!f.isValid(px / f.cols(), px % f.cols()) || !r.dynamic(px / f.cols(), px % f.cols()))
-        continue;
-      if (std::hypot(q[0] - 4.3, q[1] - 0.9) < 0.26) n.first++;
-      if (std::hypot(q[0] - 4.0, q[1] - y) < 0.31) n.second++;
-    }
-    flagged.push_back(n);
+    flagged.emplace_back(
+        flaggedWhere(f, r,
+                     [](const cv::Vec3f& q) { return std::hypot(q[0] - 4.3, q[1] - 0.9) < 0.26; }),
+        flaggedWhere(f, r,
+                     [y](const cv::Vec3f& q) { return std::hypot(q[0] - 4.0, q[1] - y) < 0.31; }));
   }
   return flagged;
 }
@@ -139,17 +145,10 @@ std::vector<std::pair<int, int>> walkAlongHedge(bool carve) {
     for (double h = 0; h < 4.0; h += 0.25) scene.posts.push_back({4.3, h, 0.1, 1.6, 150});
     const LidarFrame f = dynobj::test::render(scene, s, true, 1000000000LL + 100000000LL * j);
     const DetectionResult& r = det.process(f, Eigen::Isometry3d::Identity());
-    std::pair<int, int> n{0, 0};
-    for (int px = 0; px < f.rows() * f.cols(); px++) {
-      const cv::Vec3f& q = f.pointAt(px);
-      if (!f.isValid(px / f.cols(), px % f.cols()) || !r.dynamic(px / f.cols(), px % f.cols()))
-        continue;
-      if (std::hypot(q[0] - 4.0, q[1] - y) < 0.31)
-        n.first++;
-      else if (q[0] > 4.15 && q[0] < 4.45)
-        n.second++;
-    }
-    flagged.push_back(n);
+    const auto walker = [y](const cv::Vec3f& q) { return std::hypot(q[0] - 4.0, q[1] - y) < 0.31; };
+    flagged.emplace_back(flaggedWhere(f, r, walker), flaggedWhere(f, r, [&](const cv::Vec3f& q) {
+                           return !walker(q) && q[0] > 4.15 && q[0] < 4.45;
+                         }));
   }
   return flagged;
 }
