@@ -59,8 +59,8 @@ class Clusterer {
   /// Clusters the valid pixels set in `features` (255): `out` the clusters of min_points or
   /// more, `weak` (when given) those of weak_min_points up to min_points - 1, with their pixels
   /// and centroid only (computeClusterShape() gives the rest).
-  /// `dropped` (when given): the pixels of the clusters dropped for their size (max_area,
-  /// max_points), with each one's cluster number.
+  /// `dropped` (when given): the feature pixels of the clusters dropped for their size
+  /// (max_area, max_points), all in one list.
   void cluster(const LidarFrame& frame, const cv::Mat_<std::uint8_t>& features,
                std::vector<Cluster>& out, std::vector<Cluster>* weak = nullptr,
                std::vector<int>* dropped = nullptr);
