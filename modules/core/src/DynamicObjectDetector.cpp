@@ -283,21 +283,29 @@ std::vector<int> DynamicObjectDetector::associate(const LidarFrame& frame, doubl
   return split;
 }
 
+std::vector<std::size_t> DynamicObjectDetector::unmatchedMovers(
+    const std::vector<int>& cluster_to_track) const {
+  const std::vector<Track>& tracks = tracks_.tracks();
+  std::vector<char> matched(tracks.size(), 0);
+  for (int t : cluster_to_track)
+    if (t >= 0) matched[static_cast<std::size_t>(t)] = 1;
+  std::vector<std::size_t> out;
+  for (std::size_t t = 0; t < tracks.size(); t++)
+    if (tracks[t].dynamic && !matched[t]) out.push_back(t);
+  return out;
+}
+
 void DynamicObjectDetector::carveMovers(const LidarFrame& frame,
                                         const std::vector<Eigen::Vector3d>& predicted,
                                         std::vector<int>& cluster_to_track) {
   if (!params_.association.carve_dropped || dropped_.empty() || !chain_.contains(frame_index_))
     return;
-  const std::vector<Track>& tracks = tracks_.tracks();
-  std::vector<char> matched(tracks.size(), 0);
-  for (int t : cluster_to_track)
-    if (t >= 0) matched[static_cast<std::size_t>(t)] = 1;
   const long past = std::max(chain_.oldest(), frame_index_ - free_space_.params().lookback);
   if (past >= frame_index_) return;
+  const std::vector<Track>& tracks = tracks_.tracks();
   Cluster one;
   one.pixels.resize(1);
-  for (std::size_t t = 0; t < tracks.size(); t++) {
-    if (!tracks[t].dynamic || matched[t]) continue;
+  for (const std::size_t t : unmatchedMovers(cluster_to_track)) {
     const Eigen::Vector3d& p = predicted[t];
     const double reach = std::clamp(tracks[t].radius, 0.3, 3.0) + 0.2;
     Cluster c;
@@ -319,17 +327,12 @@ void DynamicObjectDetector::findWeakSeeds(const std::vector<Eigen::Vector3d>& pr
                                           const std::vector<int>& cluster_to_track) {
   weak_seeds_.clear();
   if (weak_.empty()) return;
-  const std::vector<Track>& tracks = tracks_.tracks();
-  std::vector<char> matched(tracks.size(), 0);
-  for (int t : cluster_to_track)
-    if (t >= 0) matched[static_cast<std::size_t>(t)] = 1;
   std::vector<int> movers;  // dynamic tracks without a cluster, and where they are expected
   std::vector<Eigen::Vector3d> expected;
-  for (std::size_t t = 0; t < tracks.size(); t++)
-    if (tracks[t].dynamic && !matched[t]) {
-      movers.push_back(tracks[t].id);
-      expected.push_back(predicted[t]);
-    }
+  for (const std::size_t t : unmatchedMovers(cluster_to_track)) {
+    movers.push_back(tracks_.tracks()[t].id);
+    expected.push_back(predicted[t]);
+  }
   if (movers.empty()) return;
   // The same gated association (Eq. 8-13), between the weak clusters and these tracks only.
   const std::vector<int> a = associator_.associate(centroidsOf(weak_), expected);

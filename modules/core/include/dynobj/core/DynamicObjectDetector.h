@@ -123,6 +123,8 @@ class DynamicObjectDetector {
   /// lookback frame saw free become its cluster.
   void carveMovers(const LidarFrame& frame, const std::vector<Eigen::Vector3d>& predicted,
                    std::vector<int>& cluster_to_track);
+  /// Indices of the dynamic tracks that `cluster_to_track` gave no cluster.
+  std::vector<std::size_t> unmatchedMovers(const std::vector<int>& cluster_to_track) const;
   /// Beyond the paper (docs/algorithm.md §5): the dynamic tracks that `cluster_to_track` left
   /// without a cluster, associated with the weak clusters (fewer than min_points features) near
   /// their `predicted` centroids by the same gated association: weak_seeds_.
