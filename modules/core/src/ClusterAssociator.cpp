@@ -2,6 +2,7 @@
 #include "dynobj/core/ClusterAssociator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -83,10 +84,34 @@ std::vector<int> ClusterAssociator::associate(const std::vector<Eigen::Vector3d>
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (std::size_t n = 0; n < N; n++) {
-    const double d2max = gateOf(n) * gateOf(n);
-    for (std::size_t m = 0; m < M; m++)
-      if ((current[m] - predicted[n]).squaredNorm() <= d2max) parent[find(m)] = find(M + n);
+  // The edges, through a grid of the predictions: cells of the widest gate in x and y, so that a
+  // cluster's tracks within their gates lie in its own cell or the 8 around it (the components,
+  // and so the result, are those of testing every pair).
+  double widest = 0;
+  for (std::size_t n = 0; n < N; n++) widest = std::max(widest, gateOf(n));
+  const auto index = [widest](double v) {  // a non-finite coordinate is within no gate: any cell
+    const double q = std::floor(v / widest);
+    return std::isfinite(q) ? static_cast<long>(std::clamp(q, -1e15, 1e15)) : 0L;
+  };
+  const auto cellOf = [&](const Eigen::Vector3d& p) {
+    return std::pair<long, long>(index(p.x()), index(p.y()));
+  };
+  std::vector<std::pair<std::pair<long, long>, std::size_t>> cells;
+  cells.reserve(N);
+  for (std::size_t n = 0; n < N; n++) cells.emplace_back(cellOf(predicted[n]), n);
+  std::sort(cells.begin(), cells.end());
+  for (std::size_t m = 0; m < M; m++) {
+    const auto [cx, cy] = cellOf(current[m]);
+    for (long dx = -1; dx <= 1; dx++)
+      for (long dy = -1; dy <= 1; dy++) {
+        const std::pair<long, long> key(cx + dx, cy + dy);
+        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, std::size_t{0}));
+        for (; it != cells.end() && it->first == key; ++it) {
+          const std::size_t n = it->second;
+          if ((current[m] - predicted[n]).squaredNorm() <= gateOf(n) * gateOf(n))
+            parent[find(m)] = find(M + n);
+        }
+      }
   }
   // Group rows and columns by component: (root, index) pairs sorted by root (two allocations,
   // not one per component).
@@ -156,6 +181,11 @@ std::vector<int> ClusterAssociator::associateMoversFirst(
   std::vector<Eigen::Vector3d> near;  // the clusters of round 1
   std::vector<std::size_t> near_index;
   for (std::size_t m = 0; m < current.size(); m++) {
+    // Only a cluster within half a mover's gate can be one (the few movers first, then all).
+    bool candidate = false;
+    for (std::size_t k = 0; k < movers.size() && !candidate; k++)
+      candidate = (current[m] - movers[k]).squaredNorm() <= half_gates[k] * half_gates[k];
+    if (!candidate) continue;
     std::size_t best = 0;
     double best_d2 = std::numeric_limits<double>::infinity();
     for (std::size_t n = 0; n < predicted.size(); n++) {

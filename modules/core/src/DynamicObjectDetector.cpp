@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <future>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
@@ -170,21 +171,30 @@ const DetectionResult& DynamicObjectDetector::process(
   if (dt == 0) return result_;          // a time reversal or a duplicate: not used (FrameCheck)
   DetectionResult& r = result_;
 
-  // III-A-2: the normalised intensity f of Eq. (2)-(4), which the ego-motion's features use too.
-  foreground_.normalize(frame);
-  r.timings.foreground = clock.lap();
-
-  // III-B-1, Eq. (5): the ego-motion since the last frame, on the worker (threads = 2) while the
-  // ground, features (III-A-2), clusters (III-B-2) are found: nothing before III-B-3 reads it.
+  // III-A-2 and III-B-1, Eq. (2)-(5): the normalised intensity f, then the ego-motion since the
+  // last frame from its features, on the worker (threads = 2) while the ground, the features
+  // (III-A-2) and the clusters (III-B-2) are found: nothing before III-B-3 reads the motion.
+  std::promise<void> normalized;
+  std::future<void> f_ready = normalized.get_future();
   worker_.start([&] {
     StageClock ego_clock;
+    try {
+      foreground_.normalize(frame);
+    } catch (...) {
+      normalized.set_exception(std::current_exception());
+      throw;
+    }
+    r.timings.foreground = ego_clock.lap();
+    normalized.set_value();
     r.ego_motion = egoMotion(frame, external_motion);
     r.timings.ego_motion = ego_clock.lap();
   });
   try {
+    segmentGround(frame);
+    f_ready.get();  // the features need f
     featuresAndClusters(frame);
   } catch (...) {
-    worker_.drain();  // the ego-motion works on `frame` and `r`: finished before they go
+    worker_.drain();  // the worker works on `frame` and `r`: finished before they go
     throw;
   }
   worker_.wait();
@@ -209,12 +219,24 @@ const DetectionResult& DynamicObjectDetector::process(
   return r;
 }
 
-void DynamicObjectDetector::featuresAndClusters(const LidarFrame& frame) {
+void DynamicObjectDetector::segmentGround(const LidarFrame& frame) {
   StageClock clock;
+  // This frame's masks, cleared here on the main thread while the worker starts.
   DetectionResult& r = result_;
+  r.dynamic.create(frame.range.size());
+  r.dynamic.setTo(0);
+  r.seeds.create(frame.range.size());
+  r.seeds.setTo(0);
+  owner_.create(frame.range.size());
+  owner_.setTo(-1);
   // Ground pixels: region growing never enters them (III-C-3), and no features lie on them.
   ground_.segment(frame, r.ground);
   r.timings.ground = clock.lap();
+}
+
+void DynamicObjectDetector::featuresAndClusters(const LidarFrame& frame) {
+  StageClock clock;
+  DetectionResult& r = result_;
   // III-A-2, Eq. (2)-(4): foreground feature pixels t = B(f - h, theta).
   const bool no_ground = params_.foreground.exclude_ground;
   foreground_.extractNormalized(frame, no_ground ? r.ground : cv::Mat_<std::uint8_t>(), r.features);
@@ -257,12 +279,6 @@ double DynamicObjectDetector::beginFrame(const LidarFrame& frame) {
           : 1.0 / frame.sensor.frequency;
   last_stamp_ = frame.timestamp_ns;
   if (prev_dynamic_.size() != frame.range.size()) prev_dynamic_.release();
-  r.dynamic.create(frame.range.size());
-  r.dynamic.setTo(0);
-  r.seeds.create(frame.range.size());
-  r.seeds.setTo(0);
-  owner_.create(frame.range.size());
-  owner_.setTo(-1);
   return dt;
 }
 
@@ -311,7 +327,8 @@ void DynamicObjectDetector::carveMovers(const LidarFrame& frame,
     Cluster c;
     for (int px : dropped_) {
       const cv::Vec3f& q = frame.pointAt(px);
-      if (std::hypot(q[0] - p.x(), q[1] - p.y()) > reach) continue;
+      const double dx = q[0] - p.x(), dy = q[1] - p.y();
+      if (dx * dx + dy * dy > reach * reach) continue;
       one.pixels[0] = px;
       if (free_space_.evidence(frame, frame_index_, one, past, chain_).free > 0)
         c.pixels.push_back(px);
@@ -424,12 +441,21 @@ RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
 }
 
 void DynamicObjectDetector::endFrame(const LidarFrame& frame, const std::vector<int>& grown) {
-  collectObjects(frame, grown);
-  check_.egoMotion(result_.ego_motion.ok || chain_.oldest() == frame_index_, sweep_,
-                   result_.warnings);  // the first sweep has no motion to fail
-  free_space_.remember(frame_index_, frame, result_.ground);
-  refiner_.remember(frame, result_.ground);
-  ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
+  // The ego-motion's memory of this frame on the worker, beside the rest (they share nothing).
+  worker_.start([&] {
+    refiner_.remember(frame, result_.ground);
+    ego_.dropPreviousOn(result_.dynamic);  // no keypoints on this frame's movers next time
+  });
+  try {
+    collectObjects(frame, grown);
+    check_.egoMotion(result_.ego_motion.ok || chain_.oldest() == frame_index_, sweep_,
+                     result_.warnings);  // the first sweep has no motion to fail
+    free_space_.remember(frame_index_, frame, result_.ground);
+  } catch (...) {
+    worker_.drain();
+    throw;
+  }
+  worker_.wait();
   result_.dynamic.copyTo(prev_dynamic_);
 }
 

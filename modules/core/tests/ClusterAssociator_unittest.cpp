@@ -66,6 +66,37 @@ TEST(ClusterAssociator, ComponentsMatchTheWholeProblem) {
   }
 }
 
+TEST(ClusterAssociator, ComponentsWithTheirOwnGatesMatchTheWholeProblem) {
+  // Gates of 0.3-3 m per track, points in 3-D on both sides of the origin (the grid of the
+  // widest gate that finds the pairs has cells of negative index too): the decomposed answer
+  // costs what the one large Hungarian problem's optimum costs.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-6, 6), z(-1, 1), g(0.3, 3.0);
+  const ClusterAssociator a;
+  for (int trial = 0; trial < 40; trial++) {
+    std::vector<V3> cur, pred;
+    std::vector<double> gates;
+    for (int i = 0; i < 30; i++) cur.emplace_back(u(rng), u(rng), z(rng));
+    for (int i = 0; i < 25; i++) {
+      pred.emplace_back(u(rng), u(rng), z(rng));
+      gates.push_back(g(rng));
+    }
+    const auto out = a.associate(cur, pred, gates);
+    const Eigen::MatrixXd D = a.costMatrix(cur, pred, gates);
+    double whole = 2.0 * static_cast<double>(pred.size());  // every track to a dummy ...
+    for (std::size_t m = 0; m < cur.size(); m++) {
+      if (out[m] < 0) {
+        whole += 2.0;
+        continue;
+      }
+      const auto n = static_cast<std::size_t>(out[m]);
+      ASSERT_LE((cur[m] - pred[n]).norm(), gates[n]) << "trial " << trial;
+      whole += (cur[m] - pred[n]).norm() - 2.0;  // ... but this one, paired
+    }
+    EXPECT_NEAR(whole, assignmentCost(D, solveAssignment(D)), 1e-9) << "trial " << trial;
+  }
+}
+
 TEST(ClusterAssociator, ATrackWithoutVelocityGetsAWiderGateWhenItIsVehicleSized) {
   // A car at 11 m/s, seen once, is 1.1 m on at the next 10 Hz sweep: beyond d_max = 1 m.
   AssociationParams p;

@@ -108,8 +108,10 @@ class DynamicObjectDetector {
   /// A time jump: the tracks (their ids go on), the ego-motion and the frame chain start anew.
   void forgetMotion();
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
-  /// The stages beside the ego-motion: ground (III-C-3's stop), features (III-A-2, Eq. 2-4),
-  /// clusters (III-B-2, Eq. 6-7), each timed.
+  /// The ground (III-C-3's stop), beside the normalisation of the intensity; timed.
+  void segmentGround(const LidarFrame& frame);
+  /// The stages beside the ego-motion: features (III-A-2, Eq. 2-4), clusters (III-B-2,
+  /// Eq. 6-7), each timed.
   void featuresAndClusters(const LidarFrame& frame);
   /// III-C-3, Eq. (24)-(25): the seeds grown into result_.dynamic (owner_); returns the pixels.
   std::vector<int> grow(const LidarFrame& frame, double dt,
