@@ -4,31 +4,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <nanoflann.hpp>
 
 #include "dynobj/core/Config.h"
 
 namespace dynobj::core {
-namespace {
-
-/// nanoflann dataset adaptor over the scaled foreground points.
-struct PointsAdaptor {
-  const std::vector<Eigen::Vector3f>& pts;
-  std::size_t kdtree_get_point_count() const { return pts.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    return pts[i][static_cast<Eigen::Index>(dim)];
-  }
-  template <class BBOX>
-  bool kdtree_get_bbox(BBOX& /*bb*/) const {
-    return false;
-  }
-};
-
-using KdTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
-                                        PointsAdaptor, 3>;
-
-}  // namespace
 
 void ClusteringParams::visit(ParamVisitor& v) {
   v.value("horizontal_distance", horizontal_distance);
@@ -38,13 +17,11 @@ void ClusteringParams::visit(ParamVisitor& v) {
   v.value("max_points", max_points);
   v.value("max_area", max_area);
   v.value("voxel", voxel);
-  v.value("search", search);
 }
 
 void ClusteringParams::validate() const {
   requirePositive("horizontal_distance", horizontal_distance);
   requirePositive("vertical_distance", vertical_distance);
-  requireOneOf("search", search, {"grid", "kdtree"});
   requireInRange("min_points", min_points, 1, 1000000);
   requireInRange("max_points", max_points, min_points, 100000000);
   requireInRange("weak_min_points", weak_min_points, 0, 1000000);  // >= min_points: none
@@ -252,10 +229,7 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
   std::vector<int>& parent = parent_;
   parent.resize(pts_.size());
   for (std::size_t i = 0; i < parent.size(); i++) parent[i] = static_cast<int>(i);
-  if (p_.search == "kdtree")
-    linkKdTree(parent);
-  else
-    linkGrid(parent);
+  linkGrid(parent);
   // Labels must be feature indices (roots of the features' own components) for cluster().
   std::vector<int>& first_feature = first_feature_;
   first_feature.assign(pts_.size(), -1);
@@ -270,29 +244,6 @@ void Clusterer::clusterPoints(const LidarFrame& f, std::vector<int>& label) {
     for (std::size_t r = 0; r < pts_.size(); r++)
       voxels_[static_cast<std::size_t>(
           first_feature[static_cast<std::size_t>(root(parent, static_cast<int>(r)))])]++;
-  }
-}
-
-void Clusterer::linkKdTree(std::vector<int>& parent) {
-  const PointsAdaptor adaptor{pts_};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
-  // Eq. (6)-(7) neighbours: a ball of radius sqrt(2) eps_xy in the scaled space contains the
-  // cylinder {d_xy <= eps_xy, d_z <= eps_z}; each candidate is then checked exactly.
-  const float eps = static_cast<float>(p_.horizontal_distance);
-  std::vector<std::pair<std::uint32_t, float>> found;
-  nanoflann::SearchParams sp;
-  sp.sorted = false;
-  for (std::size_t i = 0; i < pts_.size(); i++) {
-    const Eigen::Vector3f& p = pts_[i];
-    found.clear();
-    tree.radiusSearch(p.data(), 2.0f * eps * eps, found, sp);
-    for (const auto& [j, d2] : found) {
-      if (j <= i) continue;
-      const Eigen::Vector3f& q = pts_[j];
-      if (std::hypot(q.x() - p.x(), q.y() - p.y()) > eps || std::abs(q.z() - p.z()) > eps) continue;
-      unite(parent, static_cast<int>(i), static_cast<int>(j));
-    }
   }
 }
 

@@ -35,17 +35,14 @@ TEST(Clusterer, TwoGroupsOneMetreApartGiveTwoClusters) {
                                     {8, 21, 5, 1.1f, 0},
                                     {9, 20, 5, 1.0f, -0.1f}});
   cv::Mat_<std::uint8_t> features = f.valid.clone();
-  for (const char* search : {"grid", "kdtree"}) {
-    ClusteringParams p;
-    p.search = search;
-    p.min_points = 2;
-    std::vector<Cluster> out;
-    Clusterer(p).cluster(f, features, out);
-    ASSERT_EQ(out.size(), 2u) << search;
-    EXPECT_EQ(out[0].pixels.size(), 3u);
-    EXPECT_NEAR(std::min(out[0].centroid.y(), out[1].centroid.y()), 0.1 / 3, 1e-5);
-    EXPECT_NEAR(std::max(out[0].centroid.y(), out[1].centroid.y()), 1.0 + 0.1 / 3, 1e-5);
-  }
+  ClusteringParams p;
+  p.min_points = 2;
+  std::vector<Cluster> out;
+  Clusterer(p).cluster(f, features, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].pixels.size(), 3u);
+  EXPECT_NEAR(std::min(out[0].centroid.y(), out[1].centroid.y()), 0.1 / 3, 1e-5);
+  EXPECT_NEAR(std::max(out[0].centroid.y(), out[1].centroid.y()), 1.0 + 0.1 / 3, 1e-5);
 }
 
 TEST(Clusterer, HorizontalAndVerticalThresholdsAreSeparate) {
@@ -62,7 +59,7 @@ TEST(Clusterer, HorizontalAndVerticalThresholdsAreSeparate) {
   EXPECT_TRUE(out[0].pixels.size() == 3u || out[1].pixels.size() == 3u);
 }
 
-TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
+TEST(Clusterer, GridEqualsBruteForceOnRandomPoints) {
   // Oracle: single linkage under Eq. (6)-(7) by brute force (all pairs), on random points with
   // distances around both thresholds; every feature is its own voxel (voxel = 0).
   std::mt19937 rng(7);
@@ -93,27 +90,11 @@ TEST(Clusterer, GridAndKdTreeEqualBruteForceOnRandomPoints) {
     for (int i = 0; i < n; i++)
       groups[find(i)].insert(static_cast<int>(pts[i][0]) * 64 + static_cast<int>(pts[i][1]));
     for (auto& [root, g] : groups) expected.insert(g);
-    for (const char* search : {"grid", "kdtree"}) {
-      p.search = search;
-      std::vector<Cluster> out;
-      Clusterer(p).cluster(f, f.valid, out);
-      std::set<std::set<int>> got;
-      for (const Cluster& c : out) got.insert(std::set<int>(c.pixels.begin(), c.pixels.end()));
-      EXPECT_EQ(got, expected) << search << ", trial " << trial << ", " << expected.size()
-                               << " clusters";
-    }
-  }
-}
-
-TEST(Clusterer, UnknownSearchIsAnErrorNamingTheKey) {
-  ClusteringParams p;
-  p.search = "octree";
-  try {
-    p.validate();
-    FAIL() << "no error";
-  } catch (const ParameterError& e) {
-    EXPECT_NE(std::string(e.what()).find("search"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("grid, kdtree"), std::string::npos) << e.what();
+    std::vector<Cluster> out;
+    Clusterer(p).cluster(f, f.valid, out);
+    std::set<std::set<int>> got;
+    for (const Cluster& c : out) got.insert(std::set<int>(c.pixels.begin(), c.pixels.end()));
+    EXPECT_EQ(got, expected) << "trial " << trial << ", " << expected.size() << " clusters";
   }
 }
 
@@ -143,27 +124,24 @@ TEST(Clusterer, MaxAreaCountsVoxelsNotPixels) {
       pts.push_back(
           {static_cast<float>(4 + j), static_cast<float>(i), 6.f + 0.2f * i, 2.f, 0.2f * j - 0.5f});
   const LidarFrame f = pointsFrame(pts);
-  for (const char* search : {"grid", "kdtree"}) {
-    ClusteringParams p;
-    p.search = search;
-    p.min_points = 1;
-    p.max_area = 1.0;  // m^2: the sheet is larger, the packed object is not
-    std::vector<Cluster> out;
-    Clusterer(p).cluster(f, f.valid, out);
-    ASSERT_EQ(out.size(), 1u) << search;
-    EXPECT_EQ(out[0].pixels.size(), 40u) << search;
-    std::vector<int> dropped;  // the sheet's 66 features, when asked for
-    Clusterer(p).cluster(f, f.valid, out, nullptr, &dropped);
-    EXPECT_EQ(out.size(), 1u) << search;
-    EXPECT_EQ(dropped.size(), 66u) << search;
-    for (int px : dropped) EXPECT_GE(px / f.cols(), 4) << search;  // rows 4-9: the sheet's
-    p.max_area = 3.0;                                              // both fit
-    Clusterer(p).cluster(f, f.valid, out);
-    EXPECT_EQ(out.size(), 2u) << search;
-    p.max_area = 0;  // no limit
-    Clusterer(p).cluster(f, f.valid, out);
-    EXPECT_EQ(out.size(), 2u) << search;
-  }
+  ClusteringParams p;
+  p.min_points = 1;
+  p.max_area = 1.0;  // m^2: the sheet is larger, the packed object is not
+  std::vector<Cluster> out;
+  Clusterer(p).cluster(f, f.valid, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].pixels.size(), 40u);
+  std::vector<int> dropped;  // the sheet's 66 features, when asked for
+  Clusterer(p).cluster(f, f.valid, out, nullptr, &dropped);
+  EXPECT_EQ(out.size(), 1u);
+  EXPECT_EQ(dropped.size(), 66u);
+  for (int px : dropped) EXPECT_GE(px / f.cols(), 4);  // rows 4-9: the sheet's
+  p.max_area = 3.0;                                    // both fit
+  Clusterer(p).cluster(f, f.valid, out);
+  EXPECT_EQ(out.size(), 2u);
+  p.max_area = 0;  // no limit
+  Clusterer(p).cluster(f, f.valid, out);
+  EXPECT_EQ(out.size(), 2u);
 }
 
 // Weak clusters (beyond the paper, docs/algorithm.md §5): the components with fewer than

@@ -2,9 +2,8 @@
 // Paper III-B-2, Eq. (6)-(7): Euclidean clustering of the foreground points with separate
 // horizontal (d_xy) and vertical (d_z) thresholds: two points are neighbours when
 // d_xy <= horizontal_distance and d_z <= vertical_distance; clusters are the connected components
-// (single linkage, the usual reading of Eq. 7). Neighbours are found (`search`) in a uniform grid
-// of epsilon-sized cells (default, O(n)) or with a nanoflann KD-tree (same links, slower; kept as
-// the oracle).
+// (single linkage, the usual reading of Eq. 7). Neighbours are found in a uniform grid of
+// epsilon-sized cells, O(n) (a unit test checks the links against brute force).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,8 +28,7 @@ struct ClusteringParams : public StageParams {
   double max_area = 20.0;   ///< [m^2] with voxel > 0: clusters whose features fill
                             ///< more voxels than this area are dropped (facades, shelves); a car
                             ///< seen from 2 m fills ~10 m^2 (0 = no limit)
-  std::string search = "grid";  ///< neighbour search: grid | kdtree
-  double voxel = 0.17;          ///< [m] one point per voxel of this size (0 = all)
+  double voxel = 0.17;      ///< [m] one point per voxel of this size (0 = all)
 
   void visit(ParamVisitor& v) override;
   void validate() const override;
@@ -66,9 +64,8 @@ class Clusterer {
                std::vector<int>* dropped = nullptr);
 
  private:
-  void clusterPoints(const LidarFrame& frame, std::vector<int>& label);  ///< grid or kdtree
-  void linkKdTree(std::vector<int>& parent);                             ///< union-find over pts_
-  void linkGrid(std::vector<int>& parent);  ///< the same links, from a cell grid
+  void clusterPoints(const LidarFrame& frame, std::vector<int>& label);
+  void linkGrid(std::vector<int>& parent);  ///< union-find over pts_, from a cell grid
 
   ClusteringParams p_;
   std::vector<int> pixels_;
