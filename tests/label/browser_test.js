@@ -173,7 +173,11 @@ async function main() {
       const err = await evaluate("(() => { const e = document.getElementById('error'); return e && !e.hidden ? document.getElementById('error-text').textContent : ''; })()");
       if (err) fail(`the page shows an error while waiting for ${what}: ${err}`);
       if (await evaluate(`(() => { try { return !!(${expr}); } catch (e) { return false; } })()`)) return;  // the page may be (re)loading
-      if (Date.now() - t0 > ms) fail(`timed out waiting for ${what}`);
+      if (Date.now() - t0 > ms) {  // what the page showed, to tell a lost click from a slow server
+        const state = await evaluate(`(() => 'sweep ' + (Number(document.body.dataset.k) + 1) + ', busy ' + document.body.dataset.busy +
+          ', notice "' + document.getElementById('notice').textContent + '"')()`);
+        fail(`timed out waiting for ${what} (the page: ${state})`);
+      }
       await sleep(50);
     }
   };
@@ -187,9 +191,26 @@ async function main() {
     for (const type of ['mousePressed', 'mouseReleased'])
       await cmd('Input.dispatchMouseEvent', {type, x, y, button: 'left', clickCount: 1});
   };
+  // Clicks the middle of an element once it is enabled, topmost there and has kept its place for
+  // one poll (a notice shown a moment earlier may still move it: a click read before the move
+  // lands beside the button, and nothing happens).
   const clickElement = async (id) => {
-    const r = await evaluate(`(() => { const b = document.getElementById('${id}').getBoundingClientRect(); return [b.left + b.width / 2, b.top + b.height / 2]; })()`);
-    await mouseClick(r[0], r[1]);
+    let last = '';
+    const t0 = Date.now();
+    for (;;) {
+      const r = await evaluate(`(() => { const e = document.getElementById('${id}'); const b = e.getBoundingClientRect();
+        const x = b.left + b.width / 2, y = b.top + b.height / 2;
+        const top = document.elementFromPoint(x, y);
+        return [x, y, !e.disabled && (top === e || e.contains(top))]; })()`);
+      const here = `${r[0]},${r[1]}`;
+      if (r[2] && here === last) {
+        await mouseClick(r[0], r[1]);
+        return;
+      }
+      if (Date.now() - t0 > 10000) fail(`the button '${id}' was not clickable within 10 s`);
+      last = here;
+      await sleep(50);
+    }
   };
   const screenshot = async (name) => {
     const {data} = await cmd('Page.captureScreenshot', {format: 'png'});
