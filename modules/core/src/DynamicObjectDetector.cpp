@@ -172,8 +172,35 @@ const DetectionResult& DynamicObjectDetector::process(
   DetectionResult& r = result_;
 
   // III-A-2 and III-B-1, Eq. (2)-(5): the normalised intensity f, then the ego-motion since the
-  // last frame from its features, on the worker (threads = 2) while the ground, the features
-  // (III-A-2) and the clusters (III-B-2) are found: nothing before III-B-3 reads the motion.
+  // last frame from its features, beside the ground, the features (III-A-2) and the clusters
+  // (III-B-2): nothing before III-B-3 reads the motion.
+  egoMotionBesideClusters(frame, external_motion);
+  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
+  clock.lap();  // the stages above timed themselves; the wait for the ego-motion is in none
+
+  // III-B-3, Eq. (8)-(13): the tracks predicted into this frame, then GNN / Hungarian association.
+  const std::vector<int> split = associate(frame, dt);
+  r.timings.association = clock.lap();
+
+  // III-C-1, III-C-2, Eq. (14)-(23): movement over each track's window; dynamic tracks seed
+  const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
+  rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
+  r.timings.movement = clock.lap();
+
+  // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
+  const std::vector<int> grown = grow(frame, dt, seeds);
+  r.timings.region_growing = clock.lap();
+
+  endFrame(frame, grown);
+  r.timings.total = clock.total();
+  return r;
+}
+
+void DynamicObjectDetector::egoMotionBesideClusters(
+    const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external_motion) {
+  DetectionResult& r = result_;
+  // The worker (threads = 2) normalises the intensity, hands f over and goes on with the
+  // ego-motion; this thread clears the masks and finds the ground meanwhile.
   std::promise<void> normalized;
   std::future<void> f_ready = normalized.get_future();
   worker_.start([&] {
@@ -198,25 +225,6 @@ const DetectionResult& DynamicObjectDetector::process(
     throw;
   }
   worker_.wait();
-  chain_.push(frame_index_, r.ego_motion.motion, r.ego_motion.ok || frame_index_ == 0);
-  clock.lap();  // the stages above timed themselves; the wait for the ego-motion is in none
-
-  // III-B-3, Eq. (8)-(13): the tracks predicted into this frame, then GNN / Hungarian association.
-  const std::vector<int> split = associate(frame, dt);
-  r.timings.association = clock.lap();
-
-  // III-C-1, III-C-2, Eq. (14)-(23): movement over each track's window; dynamic tracks seed
-  const std::vector<std::vector<int>> seeds = dynamicSeeds(frame, dt);
-  rememberShapes(frame, frame_index_, clusters_, split, tracks_.tracks());
-  r.timings.movement = clock.lap();
-
-  // III-C-3, Eq. (24)-(25): region growing from the seeds, stopped at the ground.
-  const std::vector<int> grown = grow(frame, dt, seeds);
-  r.timings.region_growing = clock.lap();
-
-  endFrame(frame, grown);
-  r.timings.total = clock.total();
-  return r;
 }
 
 void DynamicObjectDetector::segmentGround(const LidarFrame& frame) {

@@ -108,7 +108,11 @@ class DynamicObjectDetector {
   /// A time jump: the tracks (their ids go on), the ego-motion and the frame chain start anew.
   void forgetMotion();
   EgoMotion egoMotion(const LidarFrame& frame, const std::optional<Eigen::Isometry3d>& external);
-  /// The ground (III-C-3's stop), beside the normalisation of the intensity; timed.
+  /// III-A-2, III-B-1, III-B-2 on two lanes (threads = 2): the normalised intensity and then the
+  /// ego-motion on the worker; the masks, the ground, the features and the clusters here.
+  void egoMotionBesideClusters(const LidarFrame& frame,
+                               const std::optional<Eigen::Isometry3d>& external_motion);
+  /// The frame's masks cleared and the ground (III-C-3's stop) found; timed.
   void segmentGround(const LidarFrame& frame);
   /// The stages beside the ego-motion: features (III-A-2, Eq. 2-4), clusters (III-B-2,
   /// Eq. 6-7), each timed.
