@@ -93,7 +93,7 @@ ABLATIONS=(
   "region growing may take objects at rest (\`[region_growing] keep_out_settled = false\`)|[region_growing]\nkeep_out_settled = false\n"
   "the refinement's own translation in every direction (\`[ego_refinement] degenerate_share = 0\`)|[ego_refinement]\ndegenerate_share = 0\n"
   "paper's one-sided foreground \`B(f − h, θ)\` (\`absolute = false\`)|[foreground]\nabsolute = false\n"
-  "no free-space check (\`[free_space] enabled = false\`; rigid movers can then never prove their motion)|[free_space]\nenabled = false\n"
+  "no free-space check (\`[free_space] enabled = false\`: the paper's movement decision)|[free_space]\nenabled = false\n"
   "free space from the point's own row only (\`side_rows = 0\`)|[free_space]\nside_rows = 0\n"
   "no hysteresis|[tracking]\nhysteresis = false\n"
   "no Kalman prediction (the paper's Eq. 8 only, no coasting)|[tracking]\nprediction = false\n"

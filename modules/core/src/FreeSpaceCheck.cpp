@@ -326,7 +326,7 @@ long FreeSpaceCheck::lookbackFor(const Cluster& cluster, const MovementDecision&
 void FreeSpaceCheck::review(const LidarFrame& frame, long current, const Cluster& cluster,
                             const FrameChain& chain, double dt, MovementDecision& d,
                             const cv::Mat_<std::uint8_t>& ground) const {
-  if (!d.moving()) return;
+  if (!d.moving() || !p_.enabled) return;  // off: the paper's movement decision stands
   const bool must_prove = p_.require_proof || d.rigid || d.early;
   bool clearly = true;  // every frame tried saw hardly any of its space free
   auto refuted = [&](long back) {

@@ -178,6 +178,35 @@ TEST(FreeSpaceCheck, ACandidateWithoutEvidenceIsNotAMoverUnlessProofIsWaived) {
   EXPECT_TRUE(d.moving());
 }
 
+TEST(FreeSpaceCheck, SwitchedOffItLeavesEveryDecisionAsItWas) {
+  // enabled = false is the paper's detector: a candidate, proven or not, rigid or not, stays a
+  // mover (it was refuted for want of evidence, which nothing can give when the check is off).
+  Scene before, after;
+  before.posts = {{4, 0, 0.3, 1.8}};
+  after.posts = {{4, 0, 0.3, 1.8}};  // it did not move: on, the check refutes it
+  const TwoFrames t(before, after);
+  const Cluster c = t.clusterAt(4, 0);
+  for (const bool rigid : {false, true}) {
+    FreeSpaceParams off;
+    off.enabled = false;
+    FreeSpaceCheck check(off);
+    check.remember(0, t.f0);
+    MovementDecision d;
+    d.enough_history = d.candidate = true;
+    d.rigid = rigid;
+    check.review(t.f1, 1, c, t.chain, 0.1, d);
+    EXPECT_FALSE(d.static_surface) << "rigid " << rigid;
+    EXPECT_TRUE(d.moving()) << "rigid " << rigid;
+    FreeSpaceCheck on{FreeSpaceParams{}};
+    on.remember(0, t.f0);
+    MovementDecision refuted;
+    refuted.enough_history = refuted.candidate = true;
+    refuted.rigid = rigid;
+    on.review(t.f1, 1, c, t.chain, 0.1, refuted);
+    EXPECT_FALSE(refuted.moving()) << "rigid " << rigid;
+  }
+}
+
 namespace {
 
 /// A 4 x 8 frame whose range at (r, c) is depth(r, c) (0 = no return); the points' coordinates
