@@ -18,7 +18,8 @@ void MovementParams::visit(ParamVisitor& v) {
   v.value("min_straightness", min_straightness);
   v.value("planar", planar);
   v.degrees("long_object_angle", long_object_angle);
-  v.value("long_object_elongation", long_object_elongation);
+  v.value("upright_length", upright_length);
+  v.value("upright_height", upright_height);
   v.value("rigid_tolerance", rigid_tolerance);
   v.value("rigid_ends_length", rigid_ends_length);
   v.value("long_object_ego_ratio", long_object_ego_ratio);
@@ -33,7 +34,8 @@ void MovementParams::validate() const {
   requirePositive("min_displacement", min_displacement);
   requireInRange("min_straightness", min_straightness, 0, 1);
   requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
-  requireInRange("long_object_elongation", long_object_elongation, 1, 1000);
+  requireInRange("upright_length", upright_length, 0, 100);
+  requireInRange("upright_height", upright_height, 0, 100);
   requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
   requireInRange("rigid_ends_length", rigid_ends_length, 0, 1000);
   requireInRange("long_object_ego_ratio", long_object_ego_ratio, 0, 1000);
@@ -113,10 +115,10 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
   const double straightness = d.early ? std::sqrt(p_.min_straightness) : p_.min_straightness;
   d.drift = d.path <= 0 || d.displacement / d.path < straightness;
 
-  // Eq. (21)-(23), for clusters at least this elongated (by default every cluster with a
-  // horizontal spread: a compact cluster's PCA axis is noise, but a rigid mover is exempt once
-  // free space proves it).
-  if (d.candidate && cluster.elongation >= p_.long_object_elongation) {
+  // Eq. (21)-(23), for a cluster with a horizontal spread (without one, all its points in one
+  // column, the PCA axis is noise: Clusterer gives it an elongation below 1). A rigid mover is
+  // exempt once free space proves it, and so is an upright one shorter than a two-wheeler.
+  if (d.candidate && cluster.elongation >= 1.0) {
     const Eigen::Vector3d v = (cw.back() - cw.front()) / d.displacement;  // Eq. (21)
     const Eigen::Matrix3d R = T_first_last.linear();                      // current -> first frame
     const Eigen::Vector3d V =
@@ -131,8 +133,11 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
       const double ego = T_first_last.translation().norm();
       const bool viewpoint_moved =
           p_.long_object_ego_ratio <= 0 || ego * p_.long_object_ego_ratio >= d.displacement;
-      d.long_object = d.angle < p_.long_object_angle && !d.rigid && viewpoint_moved;
-      d.slides = d.angle < p_.long_object_angle && d.rigid && viewpoint_moved;
+      const bool upright = p_.upright_length > 0 && cluster.length <= p_.upright_length &&
+                           cluster.max.z() - cluster.min.z() >= p_.upright_height;
+      const bool along = d.angle < p_.long_object_angle && viewpoint_moved && !upright;
+      d.long_object = along && !d.rigid;
+      d.slides = along && d.rigid;
     }
   }
   return d;

@@ -165,6 +165,33 @@ TEST(MovementAnalyzer, LongWallSlidingAlongItselfIsRejected) {
   EXPECT_TRUE(m.analyse(w, chain, across, 0.1).moving());
 }
 
+TEST(MovementAnalyzer, AnUprightClusterShorterThanATwoWheelerIsLeftToTheFreeSpaceCheck) {
+  // A rider seen from a car driving beside it: it moves along its own axis as far as the
+  // viewpoint does, as a wall sliding by would, and its few points give no ends to tell.
+  const FrameChain chain = walkingChain(5);
+  Window w;
+  for (long i = 0; i < 5; i++) w.emplace_back(i, V3(2.0, 3.0, 0));
+  const auto clusterOf = [](double length, double height) {
+    Cluster c;
+    c.main_direction = Eigen::Vector2d(1, 0);
+    c.elongation = 3;
+    c.length = length;
+    c.min = V3(1.0, 2.8, -0.9);
+    c.max = V3(1.0 + length, 3.2, -0.9 + height);
+    return c;
+  };
+  const MovementAnalyzer m;  // upright_length 2 m, upright_height 1 m
+  const auto rider = m.analyse(w, chain, clusterOf(1.8, 1.6), 0.1);
+  EXPECT_FALSE(rider.long_object);
+  EXPECT_FALSE(rider.slides);
+  EXPECT_TRUE(rider.moving());
+  EXPECT_TRUE(m.analyse(w, chain, clusterOf(1.8, 0.6), 0.1).long_object);  // a car's low flank
+  EXPECT_TRUE(m.analyse(w, chain, clusterOf(2.5, 1.6), 0.1).long_object);  // longer: a wall's
+  MovementParams paper;
+  paper.upright_length = 0;
+  EXPECT_TRUE(MovementAnalyzer(paper).analyse(w, chain, clusterOf(1.8, 1.6), 0.1).long_object);
+}
+
 TEST(MovementAnalyzer, CarMovingAlongItsAxisIsARigidMoverNotAWall) {
   const MovementAnalyzer m;
   const FrameChain chain = walkingChain(5);  // the robot walks +0.1 m/frame along X

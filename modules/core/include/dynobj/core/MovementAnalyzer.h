@@ -40,9 +40,13 @@ struct MovementParams : public StageParams {
   /// and reads as drift; things move along the ground. false = 3-D steps, the paper.
   bool planar = true;
   double long_object_angle = 25.0 * M_PI / 180;  ///< epsilon_theta [rad; deg in INI]
-  double long_object_elongation = 1.0;  ///< only clusters at least this elongated are tested
-                                        ///< for Eq. (23) (default: every cluster with a
-                                        ///< horizontal spread; see rigid_tolerance)
+  /// [m] beyond the paper: an upright cluster (at least upright_height tall) no longer than this,
+  /// a walker or a rider on a two-wheeler, is not rejected by Eq. (23): its few points give no
+  /// ends to tell it from a wall sliding by (rigid_tolerance), so the free-space check alone
+  /// judges it (riders in groups on simulated `traffic`: cyclist recall 0.22 -> 0.37 on OS1-64;
+  /// docs/algorithm.md §7). 0 = Eq. (23) for every cluster, the paper
+  double upright_length = 2.0;
+  double upright_height = 1.0;  ///< [m] ... (a low cluster that short is a parked car's flank)
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never
