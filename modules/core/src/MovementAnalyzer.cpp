@@ -20,6 +20,7 @@ void MovementParams::visit(ParamVisitor& v) {
   v.degrees("long_object_angle", long_object_angle);
   v.value("upright_length", upright_length);
   v.value("upright_height", upright_height);
+  v.value("upright_max_elongation", upright_max_elongation);
   v.value("rigid_tolerance", rigid_tolerance);
   v.value("rigid_ends_length", rigid_ends_length);
   v.value("long_object_ego_ratio", long_object_ego_ratio);
@@ -36,6 +37,7 @@ void MovementParams::validate() const {
   requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
   requireInRange("upright_length", upright_length, 0, 100);
   requireInRange("upright_height", upright_height, 0, 100);
+  requireInRange("upright_max_elongation", upright_max_elongation, 1, 1e6);
   requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
   requireInRange("rigid_ends_length", rigid_ends_length, 0, 1000);
   requireInRange("long_object_ego_ratio", long_object_ego_ratio, 0, 1000);
@@ -134,7 +136,8 @@ MovementDecision MovementAnalyzer::analyse(const Window& window, const FrameChai
       const bool viewpoint_moved =
           p_.long_object_ego_ratio <= 0 || ego * p_.long_object_ego_ratio >= d.displacement;
       const bool upright = p_.upright_length > 0 && cluster.length <= p_.upright_length &&
-                           cluster.max.z() - cluster.min.z() >= p_.upright_height;
+                           cluster.max.z() - cluster.min.z() >= p_.upright_height &&
+                           cluster.elongation <= p_.upright_max_elongation;
       const bool along = d.angle < p_.long_object_angle && viewpoint_moved && !upright;
       d.long_object = along && !d.rigid;
       d.slides = along && d.rigid;

@@ -187,6 +187,9 @@ TEST(MovementAnalyzer, AnUprightClusterShorterThanATwoWheelerIsLeftToTheFreeSpac
   EXPECT_TRUE(rider.moving());
   EXPECT_TRUE(m.analyse(w, chain, clusterOf(1.8, 0.6), 0.1).long_object);  // a car's low flank
   EXPECT_TRUE(m.analyse(w, chain, clusterOf(2.5, 1.6), 0.1).long_object);  // longer: a wall's
+  Cluster fence = clusterOf(1.8, 1.6);  // a slice of a fence: flat
+  fence.elongation = 30;
+  EXPECT_TRUE(m.analyse(w, chain, fence, 0.1).long_object);
   MovementParams paper;
   paper.upright_length = 0;
   EXPECT_TRUE(MovementAnalyzer(paper).analyse(w, chain, clusterOf(1.8, 1.6), 0.1).long_object);

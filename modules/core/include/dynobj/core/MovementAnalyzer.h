@@ -47,6 +47,9 @@ struct MovementParams : public StageParams {
   /// docs/algorithm.md §7). 0 = Eq. (23) for every cluster, the paper
   double upright_length = 2.0;
   double upright_height = 1.0;  ///< [m] ... (a low cluster that short is a parked car's flank)
+  /// ... and no more elongated than this (sqrt(lambda1 / lambda2): about length / width; a slice
+  /// of a fence or a wall is flatter, a rider 5-8)
+  double upright_max_elongation = 10.0;
   double rigid_tolerance = 0.3;  ///< a long object whose two ends both moved like its centroid
                                  ///< (within this fraction of f) is a rigid mover (a car), not a
                                  ///< wall sliding into view: exempt from Eq. (23); 0 = never
