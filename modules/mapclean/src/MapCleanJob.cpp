@@ -177,6 +177,21 @@ std::int64_t nanoseconds(double s) {
   return static_cast<std::int64_t>(std::llround(s * 1e9));
 }
 
+/// The final map points, streamed into static.ply and dynamic.ply as MapCleaner decides them.
+class MapFiles : public MapSink {
+ public:
+  void open(const std::string& dir) {
+    static_ = std::make_unique<PlyStreamWriter>(dir + "static.ply");
+    dynamic_ = std::make_unique<PlyStreamWriter>(dir + "dynamic.ply");
+  }
+  void add(const MapPoint& p, bool dynamic) override { (dynamic ? dynamic_ : static_)->add(p); }
+  PlyStreamWriter& staticPly() { return *static_; }
+  PlyStreamWriter& dynamicPly() { return *dynamic_; }
+
+ private:
+  std::unique_ptr<PlyStreamWriter> static_, dynamic_;
+};
+
 /// runMapClean()'s state over its passes.
 class MapCleanRun {
  public:
@@ -212,6 +227,7 @@ class MapCleanRun {
   std::unique_ptr<PoseSource> poses_;
   std::unique_ptr<mrptio::SequenceRunner> runner_;
   const mrptio::GroundTruth* gt_labels_ = nullptr;
+  MapFiles map_files_;  // before cleaner_, which writes into it
   MapCleaner cleaner_;
   GroundLeveler leveler_;
   std::unique_ptr<CleanedSimplemapWriter> simplemap_;
@@ -226,7 +242,7 @@ class MapCleanRun {
 };
 
 MapCleanRun::MapCleanRun(const MapCleanOptions& o, const MapCleanProgress& progress)
-    : o_(o), progress_(progress), out_(o.out_dir + "/"), cleaner_(o.clean) {
+    : o_(o), progress_(progress), out_(o.out_dir + "/"), cleaner_(o.clean, &map_files_) {
   if (!o.overwrite)
     for (const std::string& f : outputFiles(o))
       if (fs::exists(f))
@@ -268,6 +284,7 @@ MapCleanRun::MapCleanRun(const MapCleanOptions& o, const MapCleanProgress& progr
   fs::create_directories(o.out_dir, ec);
   if (!fs::is_directory(o.out_dir))
     throw std::runtime_error("cannot create output directory '" + o.out_dir + "'");
+  map_files_.open(out_);
   if (o.formats.simplemap)
     simplemap_ = std::make_unique<CleanedSimplemapWriter>(out_ + "cleaned.simplemap",
                                                           o.keyframe_distance, o.keyframe_angle);
@@ -376,17 +393,34 @@ double MapCleanRun::shareDone(const FrameRecord& rec) const {
 }
 
 void MapCleanRun::finish() {
-  sum_.voted = cleaner_.finish();
-  sum_.seen_through = cleaner_.moveSeenThrough();
-  static_points_ = cleaner_.staticMap().points();
-  const std::vector<MapPoint> dynamic_points = cleaner_.dynamicMap().points();
-  sum_.points_static = cleaner_.staticMap().pointsInserted();
-  sum_.points_dynamic = cleaner_.dynamicMap().pointsInserted();
-  sum_.map_static = static_points_.size();
-  sum_.map_dynamic = dynamic_points.size();
+  cleaner_.finish();
+  PlyStreamWriter &st = map_files_.staticPly(), &dy = map_files_.dynamicPly();
+  st.finish();
+  dy.finish();
+  sum_.voted = cleaner_.voted();
+  sum_.seen_through = cleaner_.seenThrough();
+  sum_.points_static = cleaner_.staticPoints();
+  sum_.points_dynamic = cleaner_.dynamicPoints();
+  sum_.map_static = st.count();
+  sum_.map_dynamic = dy.count();
+  sum_.peak_voxels = cleaner_.peakVoxels();
   sum_.backfilled = cleaner_.backfilledPixels();
   sum_.confirmed_tracks = cleaner_.confirmedTracks().size();
-  sum_.files = writeMaps(o_.out_dir, o_.formats, static_points_, dynamic_points, o_.png_resolution);
+  // The other formats and the metrics need the whole map: read back from the streamed files.
+  MapFormats rest = o_.formats;
+  rest.ply = false;
+  std::vector<MapPoint> dynamic_points;
+  if (rest.png || rest.pointsmap || rest.txt || !o_.ground_truth.empty())
+    static_points_ = readPly(st.partialPath());
+  if (rest.png || rest.pointsmap || rest.txt) dynamic_points = readPly(dy.partialPath());
+  if (o_.formats.ply) {
+    st.commit();
+    dy.commit();
+    sum_.files = {out_ + "static.ply", out_ + "dynamic.ply"};
+  }
+  for (const std::string& f :
+       writeMaps(o_.out_dir, rest, static_points_, dynamic_points, o_.png_resolution))
+    sum_.files.push_back(f);
   tum_->close();
   sum_.files.push_back(out_ + "poses.tum");
   if (simplemap_) {

@@ -69,9 +69,9 @@ std::string summaryText(const MapCleanSummary& s, const MapCleanOptions& o) {
   out += fmt(
       "  static map %zu points (from %zu), dynamic map %zu points (from %zu); %zu tracks confirmed "
       "dynamic, %zu points added by the back-fill, %zu voxels by the vote, %zu by the free-space "
-      "check\n",
+      "check; at most %zu voxels in memory\n",
       s.map_static, s.points_static, s.map_dynamic, s.points_dynamic, s.confirmed_tracks,
-      s.backfilled, s.voted, s.seen_through);
+      s.backfilled, s.voted, s.seen_through, s.peak_voxels);
   if (o.formats.simplemap) out += fmt("  cleaned simplemap: %zu keyframes\n", s.keyframes);
   if (!o.export_kth.empty())
     out += fmt("  KTH export: %zu frames, %zu points -> %s\n", s.exported_frames, s.exported_points,

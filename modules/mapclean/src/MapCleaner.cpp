@@ -5,6 +5,8 @@
 #include <dynobj/io/LabelFile.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace dynobj::mapclean {
 
@@ -17,6 +19,7 @@ void MapCleanParams::visit(core::ParamVisitor& v) {
   v.value("level_poses", level_poses);
   v.value("free_space_check", free_space_check);
   v.value("free_space_stride", free_space_stride);
+  v.value("final_after", final_after);
   v.value("free_space_margin", visibility.margin);
   v.value("free_space_margin_rel", visibility.margin_rel);
   v.value("free_space_window", visibility.window);
@@ -32,6 +35,7 @@ void MapCleanParams::validate() const {
   core::requireInRange("min_range", min_range, 0.0, 1000.0);
   core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
   core::requireInRange("free_space_stride", free_space_stride, 1, 1000000);
+  core::requireInRange("final_after", final_after, 0.0, 86400.0);
   core::requireInRange("free_space_margin", visibility.margin, 0.0, 100.0);
   core::requireInRange("free_space_margin_rel", visibility.margin_rel, 0.0, 10.0);
   core::requireInRange("free_space_window", visibility.window, 0, 100);
@@ -53,8 +57,12 @@ const MapCleanParams& validated(const MapCleanParams& p) {
 }
 }  // namespace
 
-MapCleaner::MapCleaner(const MapCleanParams& p)
-    : p_(validated(p)), static_(p.voxel_size), dynamic_(p.voxel_size), visibility_(p.freeSpace()) {}
+MapCleaner::MapCleaner(const MapCleanParams& p, MapSink* sink)
+    : p_(validated(p)),
+      sink_(sink ? sink : &collected_),
+      static_(p.voxel_size),
+      dynamic_(p.voxel_size),
+      visibility_(p.freeSpace()) {}
 
 FrameRecord MapCleaner::record(const core::DetectionResult& r,
                                const Eigen::Isometry3d& sensor_pose) {
@@ -111,29 +119,65 @@ std::size_t voteVoxels(VoxelMap& stat, VoxelMap& dynamic, double vote) {
       });
 }
 
-std::size_t MapCleaner::finish() {
-  return voteVoxels(static_, dynamic_, p_.dynamic_vote);
+void MapCleaner::decide(std::uint32_t before) {
+  using Slot = VoxelMap::Slot;
+  const bool check = p_.free_space_check && p_.voxel_size > 0;
+  for (const Slot& s : static_.extract([&](const Slot& v) {
+         return v.cell.last < before && dynamic_.lastAt(v.key) < before;
+       })) {
+    const bool voted = p_.dynamic_vote > 0 && static_cast<double>(s.cell.n) * p_.dynamic_vote <=
+                                                  static_cast<double>(dynamic_.countAt(s.key));
+    if (!voted && !(check && visibility_.isSeenThrough(s.cell.views))) {
+      sink_->add(static_.centroid(s), false);
+      continue;
+    }
+    dynamic_.merge(s);  // decided with the dynamic voxel at its key, just below
+    (voted ? voted_ : seen_through_)++;
+  }
+  for (const Slot& s : dynamic_.extract(
+           [&](const Slot& v) { return v.cell.last < before && !static_.contains(v.key); }))
+    sink_->add(dynamic_.centroid(s), true);
 }
 
-std::size_t MapCleaner::moveSeenThrough() {
-  if (!p_.free_space_check || p_.voxel_size <= 0) return 0;
-  return static_.moveVoxelsTo(dynamic_, [&](std::uint64_t, std::uint32_t, VoxelMap::Views v) {
-    return !visibility_.isSeenThrough(v);
-  });
+void MapCleaner::finish() {
+  if (p_.voxel_size <= 0) {  // every point kept: nothing to decide
+    for (const MapPoint& p : static_.points()) sink_->add(p, false);
+    for (const MapPoint& p : dynamic_.points()) sink_->add(p, true);
+    static_ = VoxelMap(0.0);
+    dynamic_ = VoxelMap(0.0);
+    return;
+  }
+  decide(std::numeric_limits<std::uint32_t>::max());
+}
+
+std::uint32_t MapCleaner::stampOf(std::int64_t timestamp_ns) {
+  if (!stamped_) first_ns_ = timestamp_ns;
+  stamped_ = true;
+  const std::int64_t ms = (timestamp_ns - first_ns_) / 1000000;
+  return static_cast<std::uint32_t>(std::clamp<std::int64_t>(ms, 0, 0xfffffffe));
 }
 
 void MapCleaner::map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
                      const Eigen::Isometry3d& sensor_pose) {
   const bool check = p_.free_space_check && p_.voxel_size > 0;
+  const std::uint32_t now = stampOf(frame.timestamp_ns);
   std::vector<std::uint64_t> opened;  // static voxels new in the map: the past scans' views
   forEachWorldPoint(frame, sensor_pose, p_.min_range, [&](int r, int c, const MapPoint& p) {
-    if (dynamic_mask(r, c))
-      dynamic_.insert(p);
-    else if (static_.insert(p) && check)
-      opened.push_back(static_.keyOf(p.x, p.y, p.z));
+    if (dynamic_mask(r, c)) {
+      dynamic_.insert(p, now);
+      dynamic_points_++;
+    } else {
+      static_points_++;
+      if (static_.insert(p, now) && check) opened.push_back(static_.keyOf(p.x, p.y, p.z));
+    }
   });
   if (check) visibility_.countPast(static_, opened, frame.timestamp_ns);
   look(frame, sensor_pose);
+  peak_voxels_ = std::max(peak_voxels_, static_.size() + dynamic_.size());
+  const auto after = static_cast<std::uint32_t>(std::llround(p_.final_after * 1000.0));
+  if (after == 0 || p_.voxel_size <= 0 || now < after || now - decided_at_ < after / 4) return;
+  decided_at_ = now;
+  decide(now - after);
 }
 
 void MapCleaner::look(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose) {

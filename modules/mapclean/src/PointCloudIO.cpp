@@ -40,17 +40,46 @@ void PcdStreamWriter::close() {
   writer_.close();
 }
 
+namespace {
+constexpr std::size_t kCountField = 40;  // the count, "\ncomment" and padding
+}  // namespace
+
+PlyStreamWriter::PlyStreamWriter(const std::string& path) : file_(path) {
+  file_.stream() << "ply\nformat binary_little_endian 1.0\ncomment mrpt-dynobj dynobj-mapclean\n"
+                 << "element vertex ";
+  count_pos_ = file_.stream().tellp();
+  file_.stream() << std::string(kCountField, ' ')
+                 << "\nproperty float x\nproperty float y\nproperty float z\n"
+                 << "property float intensity\nend_header\n";
+}
+
+void PlyStreamWriter::add(const MapPoint& p) {
+  const float v[4] = {p.x, p.y, p.z, p.intensity};
+  file_.stream().write(reinterpret_cast<const char*>(v), sizeof(v));
+  count_++;
+}
+
+void PlyStreamWriter::finish() {
+  std::string field = std::to_string(count_) + "\ncomment";
+  field.resize(kCountField, ' ');
+  std::ofstream& out = file_.stream();
+  const std::streampos end = out.tellp();
+  out.seekp(count_pos_);
+  out << field;
+  out.seekp(end);
+  out.flush();
+  if (!out) throw std::runtime_error(io::cannotWriteMessage(file_.path()));
+}
+
+void PlyStreamWriter::commit() {
+  finish();
+  file_.commit();
+}
+
 void writePly(const std::string& path, const std::vector<MapPoint>& points) {
-  io::AtomicFile f(path);
-  f.stream() << "ply\nformat binary_little_endian 1.0\ncomment mrpt-dynobj dynobj-mapclean\n"
-             << "element vertex " << points.size()
-             << "\nproperty float x\nproperty float y\nproperty float z\nproperty float intensity\n"
-             << "end_header\n";
-  for (const MapPoint& p : points) {
-    const float v[4] = {p.x, p.y, p.z, p.intensity};
-    f.stream().write(reinterpret_cast<const char*>(v), sizeof(v));
-  }
-  f.commit();
+  PlyStreamWriter ply(path);
+  for (const MapPoint& p : points) ply.add(p);
+  ply.commit();
 }
 
 std::vector<MapPoint> readPly(const std::string& path) {

@@ -78,9 +78,30 @@ VoxelMap::Slot& VoxelMap::slotFor(std::uint64_t key) {
 void VoxelMap::rebuild(const std::vector<Slot>& slots) {
   std::size_t n = 1024;
   while (slots.size() * 10 > n * 7) n *= 2;
+  if (n < slots_.size()) std::vector<Slot>().swap(slots_);  // smaller: the memory goes back
   slots_.assign(n, Slot{});
   used_ = 0;
   for (const Slot& s : slots) slotFor(s.key) = s;
+}
+
+void VoxelMap::reseat(std::size_t start) {
+  const std::size_t n = slots_.size(), mask = n - 1;
+  for (std::size_t k = 1; k <= n; k++) {
+    const std::size_t i = (start + k) & mask;
+    if (slots_[i].key == kEmpty) continue;
+    const Slot s = slots_[i];
+    slots_[i] = Slot{};
+    std::size_t j = mix(s.key) & mask;
+    while (slots_[j].key != kEmpty) j = (j + 1) & mask;
+    slots_[j] = s;
+  }
+  if (n > 1024 && used_ * 10 < n) {
+    std::vector<Slot> kept;
+    kept.reserve(used_);
+    for (const Slot& s : slots_)
+      if (s.key != kEmpty) kept.push_back(s);
+    rebuild(kept);
+  }
 }
 
 void VoxelMap::merge(const Slot& s) {
@@ -95,6 +116,7 @@ void VoxelMap::merge(const Slot& s) {
   c.dz = mean(c.dz, s.cell.dz);
   c.intensity = mean(c.intensity, s.cell.intensity);
   c.n += s.cell.n;
+  c.last = std::max(c.last, s.cell.last);
 }
 
 void VoxelMap::corner(std::uint64_t key, double& x, double& y, double& z) const {
@@ -114,7 +136,7 @@ MapPoint VoxelMap::centroid(const Slot& s) const {
           static_cast<float>(z + s.cell.dz), s.cell.intensity};
 }
 
-bool VoxelMap::insert(const MapPoint& p) {
+bool VoxelMap::insert(const MapPoint& p, std::uint32_t stamp) {
   inserted_++;
   if (voxel_ == 0.0) {
     raw_.push_back(p);
@@ -125,6 +147,7 @@ bool VoxelMap::insert(const MapPoint& p) {
   double x = 0, y = 0, z = 0;
   corner(key, x, y, z);
   c.n++;
+  c.last = std::max(c.last, stamp);
   const float w = 1.f / static_cast<float>(c.n);
   c.dx += (static_cast<float>(p.x - x) - c.dx) * w;
   c.dy += (static_cast<float>(p.y - y) - c.dy) * w;
@@ -136,6 +159,11 @@ bool VoxelMap::insert(const MapPoint& p) {
 std::uint32_t VoxelMap::countAt(std::uint64_t key) const {
   const Slot* s = find(key);
   return s ? s->cell.n : 0;
+}
+
+std::uint32_t VoxelMap::lastAt(std::uint64_t key) const {
+  const Slot* s = find(key);
+  return s ? s->cell.last : 0;
 }
 
 std::size_t VoxelMap::size() const {

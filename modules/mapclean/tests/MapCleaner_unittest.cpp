@@ -126,9 +126,13 @@ TEST(MapCleaner, VoxelVoteMovesMostlyDynamicVoxels) {
   cv::Mat_<std::uint8_t> mask(4, 8, std::uint8_t{0});
   mask(0, 1) = mask(0, 2) = mask(1, 2) = 255;
   cleaner.map(f, mask, Eigen::Isometry3d::Identity());
-  EXPECT_EQ(cleaner.finish(), 1u);
-  ASSERT_EQ(cleaner.staticMap().size(), 1u);
-  EXPECT_NEAR(cleaner.staticMap().points()[0].x, 3.55, 1e-5);  // only B's static points
-  ASSERT_EQ(cleaner.dynamicMap().size(), 2u);
-  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, 0.6, 1e-5);  // A: all three points
+  cleaner.finish();
+  EXPECT_EQ(cleaner.voted(), 1u);
+  const mc::MapCollector& map = cleaner.collected();
+  ASSERT_EQ(map.static_points.size(), 1u);
+  EXPECT_NEAR(map.static_points[0].x, 3.55, 1e-5);  // only B's static points
+  ASSERT_EQ(map.dynamic_points.size(), 2u);
+  EXPECT_NEAR(map.dynamic_points[0].x, 0.6, 1e-5);  // A: all three points
+  EXPECT_TRUE(cleaner.staticMap().empty());         // every voxel final, none left in memory
+  EXPECT_TRUE(cleaner.dynamicMap().empty());
 }

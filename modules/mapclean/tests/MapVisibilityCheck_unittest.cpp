@@ -144,12 +144,14 @@ TEST(MapCleaner, AVoxelLaterScansSeeThroughMovesToTheDynamicMap) {
   cleaner.map(frameAt(10.f), kAllStatic, kOrigin);  // then the place is empty: seen through
   cleaner.map(frameAt(10.f), kAllStatic, kOrigin);
   const std::size_t mapped = cleaner.staticMap().size();
-  EXPECT_EQ(cleaner.finish(), 0u);
-  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);
-  ASSERT_EQ(cleaner.dynamicMap().size(), 1u);
-  EXPECT_NEAR(cleaner.dynamicMap().points()[0].x, person[0], 1e-5);
-  EXPECT_NEAR(cleaner.dynamicMap().points()[0].z, person[2], 1e-5);
-  EXPECT_EQ(cleaner.staticMap().size(), mapped - 1);  // the walls at 10 m stay
+  cleaner.finish();
+  EXPECT_EQ(cleaner.voted(), 0u);
+  EXPECT_EQ(cleaner.seenThrough(), 1u);
+  const mc::MapCollector& map = cleaner.collected();
+  ASSERT_EQ(map.dynamic_points.size(), 1u);
+  EXPECT_NEAR(map.dynamic_points[0].x, person[0], 1e-5);
+  EXPECT_NEAR(map.dynamic_points[0].z, person[2], 1e-5);
+  EXPECT_EQ(map.static_points.size(), mapped - 1);  // the walls at 10 m stay
 }
 
 dynobj::core::LidarFrame at(dynobj::core::LidarFrame f, double seconds) {
@@ -166,8 +168,9 @@ TEST(MapCleaner, TheScansOfThePastSecondsCountForANewVoxel) {
   const std::size_t before = cleaner.staticMap().size();
   cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
   EXPECT_EQ(cleaner.staticMap().size(), before + 1);
-  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);
-  EXPECT_EQ(cleaner.dynamicMap().size(), 1u);
+  cleaner.finish();
+  EXPECT_EQ(cleaner.seenThrough(), 1u);
+  EXPECT_EQ(cleaner.collected().dynamic_points.size(), 1u);
 }
 
 TEST(MapCleaner, ScansOlderThanThePastWindowAreForgotten) {
@@ -180,13 +183,15 @@ TEST(MapCleaner, ScansOlderThanThePastWindowAreForgotten) {
   cleaner.map(at(frameAt(10.f), 0.0), kAllStatic, kOrigin);  // 2 s before the person: forgotten
   cleaner.map(at(frameAt(10.f), 1.0), kAllStatic, kOrigin);  // 1 s before: one view, < min_views
   cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
-  EXPECT_EQ(cleaner.moveSeenThrough(), 0u);
+  cleaner.finish();
+  EXPECT_EQ(cleaner.seenThrough(), 0u);
   p.visibility.past = 0;  // none remembered
   mc::MapCleaner none(p);
   none.map(at(frameAt(10.f), 1.0), kAllStatic, kOrigin);
   none.map(at(frameAt(10.f), 1.5), kAllStatic, kOrigin);
   none.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
-  EXPECT_EQ(none.moveSeenThrough(), 0u);
+  none.finish();
+  EXPECT_EQ(none.seenThrough(), 0u);
 }
 
 TEST(MapCleaner, AScanLookedAtCountsItsViewsButMapsNothing) {
@@ -197,12 +202,52 @@ TEST(MapCleaner, AScanLookedAtCountsItsViewsButMapsNothing) {
   EXPECT_TRUE(cleaner.staticMap().empty());  // looked at, not mapped
   cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 2.0), kAllStatic, kOrigin);
   EXPECT_EQ(cleaner.staticMap().size(), 1u);
-  EXPECT_EQ(cleaner.moveSeenThrough(), 1u);  // the two looks before count as past views
+  cleaner.finish();
+  EXPECT_EQ(cleaner.seenThrough(), 1u);  // the two looks before count as past views
 
   mc::MapCleaner later = streamingCleaner();
   later.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 0.0), kAllStatic, kOrigin);
   later.look(at(frameAt(10.f), 1.0), kOrigin);  // after: seen through twice
   later.look(at(frameAt(10.f), 2.0), kOrigin);
   EXPECT_EQ(later.staticMap().size(), 1u);
-  EXPECT_EQ(later.moveSeenThrough(), 1u);
+  later.finish();
+  EXPECT_EQ(later.seenThrough(), 1u);
+}
+
+TEST(MapCleaner, AVoxelNoPointFellIntoForFinalAfterIsDecidedAndLeavesMemory) {
+  // A person at 5 m (one voxel), then the walls at 10 m seen through their place, scan after scan:
+  // final_after 2 s after the person's last point, their voxel is decided (seen through: dynamic)
+  // and written; the walls, hit by every scan, stay in memory until finish().
+  mc::MapCleanParams p;
+  p.voxel_size = 1.0;
+  p.visibility = params();
+  p.free_space_stride = 1;
+  p.final_after = 2.0;
+  mc::MapCleaner cleaner(p);
+  cleaner.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 0.0), kAllStatic, kOrigin);
+  const std::size_t walls = [] {
+    mc::MapCleanParams q;
+    q.voxel_size = 1.0;
+    mc::MapCleaner c(q);
+    c.map(frameAt(10.f), kAllStatic, kOrigin);
+    return c.staticMap().size();
+  }();
+  for (int k = 1; k <= 4; k++) {
+    cleaner.map(at(frameAt(10.f), 0.5 * k), kAllStatic, kOrigin);
+    EXPECT_TRUE(cleaner.collected().dynamic_points.empty()) << "at " << 0.5 * k << " s";
+  }
+  cleaner.map(at(frameAt(10.f), 2.5), kAllStatic, kOrigin);  // 2.5 s after the person's point
+  ASSERT_EQ(cleaner.collected().dynamic_points.size(), 1u);
+  EXPECT_EQ(cleaner.seenThrough(), 1u);
+  EXPECT_EQ(cleaner.staticMap().size(), walls);  // the person's voxel left memory
+  EXPECT_TRUE(cleaner.collected().static_points.empty());
+  cleaner.finish();
+  EXPECT_EQ(cleaner.collected().static_points.size(), walls);
+
+  p.final_after = 0;  // off: everything waits for finish()
+  mc::MapCleaner whole(p);
+  whole.map(at(mc::test::tinyFrame({{{2, 4}, beam(2, 4, 5.f)}}), 0.0), kAllStatic, kOrigin);
+  for (int k = 1; k <= 5; k++) whole.map(at(frameAt(10.f), 0.5 * k), kAllStatic, kOrigin);
+  EXPECT_TRUE(whole.collected().dynamic_points.empty());
+  EXPECT_EQ(whole.staticMap().size(), walls + 1);
 }

@@ -88,6 +88,7 @@ struct MapCleanSummary {
   std::size_t scans = 0;
   std::size_t points_static = 0, points_dynamic = 0;  ///< scan points sent to each map
   std::size_t map_static = 0, map_dynamic = 0;        ///< map points (voxels)
+  std::size_t peak_voxels = 0;   ///< most voxels in memory at once (final_after)
   std::size_t voted = 0;         ///< static voxels moved to the dynamic map by the voxel vote
   std::size_t seen_through = 0;  ///< static voxels moved by the free-space check
   std::size_t backfilled = 0, confirmed_tracks = 0, keyframes = 0, exported_frames = 0,

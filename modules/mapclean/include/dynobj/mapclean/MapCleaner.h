@@ -8,6 +8,11 @@
 // their boxes (grown by box_margin) in the scan are marked too, including frames before the track
 // was confirmed. Memory: the window's records, not the recording's. It uses only the detector's
 // output, never ground truth.
+//
+// Final voxels: a voxel into which no point has fallen for final_after seconds (nor into the
+// other map's voxel at its key) is decided - the vote, the free-space check - and handed to the
+// MapSink, static or dynamic, then forgotten: memory holds the voxels still in use (the place
+// around the sensor), not the map of the whole recording. finish() decides the rest.
 #pragma once
 
 #include <dynobj/core/DynamicObjectDetector.h>
@@ -60,6 +65,9 @@ struct MapCleanParams : public core::StageParams {
   /// ground plane; for planar / drifting pose sources on a level floor. Off: assumes nothing.
   bool level_poses = false;
   int free_space_stride = 2;
+  /// [s] a voxel no point has fallen into for this long is final (see above): decided and written
+  /// out; 0 = every voxel stays in memory until the end
+  double final_after = 20.0;
   /// The check's own parameters (INI keys free_space_margin, free_space_margin_rel,
   /// free_space_window, free_space_min_views, free_space_ratio, free_space_past; min_range is the
   /// one above).
@@ -87,13 +95,29 @@ struct FrameRecord {
   std::vector<ObjectBox> objects;
 };
 
+/// Where the final map points go, as they become final (MapCleaner).
+class MapSink {
+ public:
+  virtual ~MapSink() = default;
+  virtual void add(const MapPoint& p, bool dynamic) = 0;
+};
+
+/// A MapSink that keeps the points (small maps, tests): the static and the dynamic map.
+struct MapCollector : public MapSink {
+  std::vector<MapPoint> static_points, dynamic_points;
+  void add(const MapPoint& p, bool dynamic) override {
+    (dynamic ? dynamic_points : static_points).push_back(p);
+  }
+};
+
 /// The voxel vote: moves to `dynamic` every voxel of `stat` that received `vote` times fewer
 /// points than `dynamic` holds at its place (vote 0: none). Returns the voxels moved.
 std::size_t voteVoxels(VoxelMap& stat, VoxelMap& dynamic, double vote);
 
 class MapCleaner {
  public:
-  explicit MapCleaner(const MapCleanParams& p);
+  /// `sink`: where the final points go (not owned; none: collected(), for small maps and tests).
+  explicit MapCleaner(const MapCleanParams& p, MapSink* sink = nullptr);
 
   /// A scan's detection: keeps what mapping it needs and notes the tracks confirmed dynamic.
   FrameRecord record(const core::DetectionResult& r, const Eigen::Isometry3d& sensor_pose);
@@ -103,7 +127,8 @@ class MapCleaner {
   cv::Mat_<std::uint8_t> dynamicMask(const core::LidarFrame& frame, const FrameRecord& rec) const;
 
   /// Maps one scan: every valid pixel (placed with `sensor_pose`) into the static or dynamic map;
-  /// then (every free_space_stride-th scan) its free-space views of the static map so far.
+  /// then (every free_space_stride-th scan) its free-space views of the static map so far; then
+  /// (every quarter of final_after) the voxels final by then go to the sink.
   void map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>& dynamic_mask,
            const Eigen::Isometry3d& sensor_pose);
 
@@ -112,24 +137,46 @@ class MapCleaner {
   /// points are not mapped.
   void look(const core::LidarFrame& frame, const Eigen::Isometry3d& sensor_pose);
 
-  /// After the last scan: applies the voxel vote. Returns the voxels moved.
-  std::size_t finish();
-  /// After finish(): moves the static voxels the scans saw through to the dynamic map (free-space
-  /// check on). Returns how many moved.
-  std::size_t moveSeenThrough();
+  /// After the last scan: every voxel left is final (decided, to the sink).
+  void finish();
 
+  /// The voxels in use (not final yet).
   const VoxelMap& staticMap() const { return static_; }
   const VoxelMap& dynamicMap() const { return dynamic_; }
+  /// Without a sink of one's own: the final points so far.
+  const MapCollector& collected() const { return collected_; }
+  /// Static voxels moved to the dynamic map so far: by the vote, by the free-space check.
+  std::size_t voted() const { return voted_; }
+  std::size_t seenThrough() const { return seen_through_; }
+  /// Points inserted into the static, the dynamic map.
+  std::size_t staticPoints() const { return static_points_; }
+  std::size_t dynamicPoints() const { return dynamic_points_; }
+  /// Most voxels in use at once (both maps).
+  std::size_t peakVoxels() const { return peak_voxels_; }
   const std::set<int>& confirmedTracks() const { return confirmed_; }
   std::size_t backfilledPixels() const { return backfilled_; }
   const MapCleanParams& params() const { return p_; }
 
  private:
+  /// The voxels whose last point (in either map) came before `before` [ms stamp] are final: the
+  /// vote (a static voxel with `dynamic_vote` times fewer points than the dynamic one at its key),
+  /// then the free-space check decide a static voxel's map; each goes to the sink.
+  void decide(std::uint32_t before);
+  /// The stamp of a scan: milliseconds since the first mapped scan.
+  std::uint32_t stampOf(std::int64_t timestamp_ns);
+
   MapCleanParams p_;
+  MapCollector collected_;
+  MapSink* sink_;
   std::set<int> confirmed_;
   VoxelMap static_, dynamic_;
   MapVisibilityCheck visibility_;
   std::size_t mapped_ = 0;  ///< scans mapped
+  std::int64_t first_ns_ = 0;
+  bool stamped_ = false;
+  std::uint32_t decided_at_ = 0;  ///< stamp of the last decide()
+  std::size_t voted_ = 0, seen_through_ = 0, static_points_ = 0, dynamic_points_ = 0,
+              peak_voxels_ = 0;
   mutable std::size_t backfilled_ = 0;
 };
 

@@ -54,6 +54,27 @@ class PcdStreamWriter {
   io::PcdWriter writer_;
 };
 
+/// Streams points into a binary little-endian PLY (vertex x y z intensity, float) whose size is
+/// not known in advance: the vertex count is patched into the header by finish() (a padded comment
+/// line after it keeps the header's length). commit() renames the file into place; destroyed
+/// uncommitted, it leaves nothing. Memory stays flat.
+class PlyStreamWriter {
+ public:
+  explicit PlyStreamWriter(const std::string& path);
+  void add(const MapPoint& p);
+  std::size_t count() const { return count_; }
+  /// Completes the header and flushes: partialPath() is then a whole PLY file (readPly).
+  void finish();
+  const std::string& partialPath() const { return file_.partialPath(); }
+  /// finish(), then renames the file into place. Throws std::runtime_error on an I/O error.
+  void commit();
+
+ private:
+  io::AtomicFile file_;
+  std::streampos count_pos_;
+  std::size_t count_ = 0;
+};
+
 /// Writes a binary little-endian PLY (vertex x y z intensity, float) atomically.
 void writePly(const std::string& path, const std::vector<MapPoint>& points);
 
