@@ -111,12 +111,19 @@ cv::Mat_<std::uint8_t> MapCleaner::dynamicMask(const core::LidarFrame& frame,
   return mask;
 }
 
+namespace {
+/// The voxel vote: a static voxel with `vote` times fewer points than the dynamic one at its key.
+bool outvoted(std::uint32_t n_static, std::uint32_t n_dynamic, double vote) {
+  return vote > 0 && static_cast<double>(n_static) * vote <= static_cast<double>(n_dynamic);
+}
+}  // namespace
+
 std::size_t voteVoxels(VoxelMap& stat, VoxelMap& dynamic, double vote) {
   if (vote <= 0 || stat.voxelSize() <= 0) return 0;
-  return stat.moveVoxelsTo(
-      dynamic, [&](std::uint64_t key, std::uint32_t n_static, VoxelMap::Views) {
-        return static_cast<double>(n_static) * vote > static_cast<double>(dynamic.countAt(key));
-      });
+  return stat.moveVoxelsTo(dynamic,
+                           [&](std::uint64_t key, std::uint32_t n_static, VoxelMap::Views) {
+                             return !outvoted(n_static, dynamic.countAt(key), vote);
+                           });
 }
 
 void MapCleaner::decide(std::uint32_t before) {
@@ -125,8 +132,7 @@ void MapCleaner::decide(std::uint32_t before) {
   for (const Slot& s : static_.extract([&](const Slot& v) {
          return v.cell.last < before && dynamic_.lastAt(v.key) < before;
        })) {
-    const bool voted = p_.dynamic_vote > 0 && static_cast<double>(s.cell.n) * p_.dynamic_vote <=
-                                                  static_cast<double>(dynamic_.countAt(s.key));
+    const bool voted = outvoted(s.cell.n, dynamic_.countAt(s.key), p_.dynamic_vote);
     if (!voted && !(check && visibility_.isSeenThrough(s.cell.views))) {
       sink_->add(static_.centroid(s), false);
       continue;
