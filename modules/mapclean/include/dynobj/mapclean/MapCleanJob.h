@@ -6,9 +6,10 @@
 //   map:    each scan backfill_window seconds later (read again by a trailing reader; at once
 //           without back-fill): dynamic = detector + the boxes of tracks confirmed by then, into
 //           the static / dynamic voxel maps (with its free-space views of the map so far), the
-//           cleaned simplemap, the KTH export and poses.tum;
-//   finish: the voxel vote, the voxels seen through; static/dynamic .ply, .pointsmap, .txt,
-//           top-down PNGs, cleaned .simplemap;
+//           cleaned simplemap, the KTH export and poses.tum; the voxels final by then (vote,
+//           free-space rule) streamed to static / dynamic .ply;
+//   finish: the same for the voxels left; .pointsmap, .txt, top-down PNGs from the PLYs read
+//           back, cleaned .simplemap;
 //   metrics (with ground truth only, a further pass after the map is final): SA / DA / AA.
 // Every output file is written as *.partial and renamed when complete; on an error nothing that
 // looks complete is left behind.

@@ -54,12 +54,12 @@ struct MapCleanParams : public core::StageParams {
   double backfill_window = 30.0;
   double box_margin = 0.15;  ///< [m] growth of a track's box sideways and upwards (back-fill)
   double min_range = 0.0;    ///< [m] points nearer than this (e.g. the robot itself) are not mapped
-  /// Voxel vote (finish()): a static voxel moves to the dynamic map when it received at least
-  /// this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
+  /// Voxel vote (when a voxel is final): a static voxel moves to the dynamic map when it received
+  /// at least this many times fewer static than dynamic points (0 = off; needs voxel_size > 0).
   double dynamic_vote = 1.0;
   /// Free-space check (MapVisibilityCheck.h) of the static map: every free_space_stride-th scan,
-  /// as it is mapped, counts its views of the map so far; after the vote, the voxels seen through
-  /// move to the dynamic map (needs voxel_size > 0).
+  /// as it is mapped, counts its views of the map so far; a final voxel not outvoted but seen
+  /// through moves to the dynamic map (needs voxel_size > 0).
   bool free_space_check = true;
   /// Level every pose with the scan's floor (GroundLeveler.h): roll, pitch, height from the
   /// ground plane; for planar / drifting pose sources on a level floor. Off: assumes nothing.
