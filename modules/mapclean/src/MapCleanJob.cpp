@@ -399,8 +399,8 @@ void MapCleanRun::finish() {
   dy.finish();
   sum_.voted = cleaner_.voted();
   sum_.seen_through = cleaner_.seenThrough();
-  sum_.points_static = cleaner_.staticPoints();
-  sum_.points_dynamic = cleaner_.dynamicPoints();
+  sum_.points_static = cleaner_.staticMap().pointsInserted();
+  sum_.points_dynamic = cleaner_.dynamicMap().pointsInserted();
   sum_.map_static = st.count();
   sum_.map_dynamic = dy.count();
   sum_.peak_voxels = cleaner_.peakVoxels();

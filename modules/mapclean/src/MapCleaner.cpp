@@ -149,8 +149,6 @@ void MapCleaner::finish() {
   if (p_.voxel_size <= 0) {  // every point kept: nothing to decide
     for (const MapPoint& p : static_.points()) sink_->add(p, false);
     for (const MapPoint& p : dynamic_.points()) sink_->add(p, true);
-    static_ = VoxelMap(0.0);
-    dynamic_ = VoxelMap(0.0);
     return;
   }
   decide(std::numeric_limits<std::uint32_t>::max());
@@ -169,13 +167,10 @@ void MapCleaner::map(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>
   const std::uint32_t now = stampOf(frame.timestamp_ns);
   std::vector<std::uint64_t> opened;  // static voxels new in the map: the past scans' views
   forEachWorldPoint(frame, sensor_pose, p_.min_range, [&](int r, int c, const MapPoint& p) {
-    if (dynamic_mask(r, c)) {
+    if (dynamic_mask(r, c))
       dynamic_.insert(p, now);
-      dynamic_points_++;
-    } else {
-      static_points_++;
-      if (static_.insert(p, now) && check) opened.push_back(static_.keyOf(p.x, p.y, p.z));
-    }
+    else if (static_.insert(p, now) && check)
+      opened.push_back(static_.keyOf(p.x, p.y, p.z));
   });
   if (check) visibility_.countPast(static_, opened, frame.timestamp_ns);
   look(frame, sensor_pose);

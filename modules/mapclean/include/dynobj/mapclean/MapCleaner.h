@@ -148,9 +148,6 @@ class MapCleaner {
   /// Static voxels moved to the dynamic map so far: by the vote, by the free-space check.
   std::size_t voted() const { return voted_; }
   std::size_t seenThrough() const { return seen_through_; }
-  /// Points inserted into the static, the dynamic map.
-  std::size_t staticPoints() const { return static_points_; }
-  std::size_t dynamicPoints() const { return dynamic_points_; }
   /// Most voxels in use at once (both maps).
   std::size_t peakVoxels() const { return peak_voxels_; }
   const std::set<int>& confirmedTracks() const { return confirmed_; }
@@ -175,8 +172,7 @@ class MapCleaner {
   std::int64_t first_ns_ = 0;
   bool stamped_ = false;
   std::uint32_t decided_at_ = 0;  ///< stamp of the last decide()
-  std::size_t voted_ = 0, seen_through_ = 0, static_points_ = 0, dynamic_points_ = 0,
-              peak_voxels_ = 0;
+  std::size_t voted_ = 0, seen_through_ = 0, peak_voxels_ = 0;
   mutable std::size_t backfilled_ = 0;
 };
 
