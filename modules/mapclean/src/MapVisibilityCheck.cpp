@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/core.hpp>
+#include <vector>
 
 namespace dynobj::mapclean {
 namespace {
@@ -57,11 +59,11 @@ MapVisibilityCheck::ScanView MapVisibilityCheck::prepare(const core::LidarFrame&
   scans_++;
   ScanView v;
   v.timestamp_ns = frame.timestamp_ns;
-  v.range = cv::Mat_<float>(frame.rows(), frame.cols(), 0.f);
-  frame.range.copyTo(v.range, frame.valid);
+  cv::Mat_<float> range(frame.rows(), frame.cols(), 0.f);
+  frame.range.copyTo(range, frame.valid);
   cv::Mat_<float> nearest;
   nearestInWindow(frame, std::max(0, p_.window), nearest);
-  v.nearest = nearest;
+  cv::merge(std::vector<cv::Mat>{range, nearest}, v.images);
   v.to_sensor = sensor_pose.inverse().cast<float>();
   v.near = static_cast<float>(std::max(p_.min_range, s.min_range));
   v.far = static_cast<float>(s.max_range);
@@ -76,10 +78,11 @@ void MapVisibilityCheck::count(const ScanView& scan, float x, float y, float z,
   if (range < scan.near || range > scan.far) return;
   int r = -1, c = -1;
   if (!projection_->pixelOf(q.x(), q.y(), q.z(), r, c)) return;
-  const auto measured = static_cast<float>(scan.range.at<T>(r, c));
+  const auto& px = scan.images.at<cv::Vec<T, 2>>(r, c);
+  const auto measured = static_cast<float>(px[0]);
   if (!(measured > 0.f)) return;  // no return there
   const float tol = static_cast<float>(p_.margin) + static_cast<float>(p_.margin_rel) * range;
-  if (static_cast<float>(scan.nearest.at<T>(r, c)) > range + tol)
+  if (static_cast<float>(px[1]) > range + tol)
     bump(views.free);  // every beam around it ends beyond it
   else if (std::abs(measured - range) <= tol)
     bump(views.hit);
@@ -98,8 +101,7 @@ void MapVisibilityCheck::addScan(const core::LidarFrame& frame,
   map.forEachVoxel(
       [&](float x, float y, float z, VoxelMap::Views& v) { count<float>(scan, x, y, z, v); });
   if (p_.past <= 0) return;
-  scan.range.convertTo(scan.range, CV_16F);
-  scan.nearest.convertTo(scan.nearest, CV_16F);
+  scan.images.convertTo(scan.images, CV_16F);
   past_.push_back(std::move(scan));
 }
 

@@ -9,14 +9,12 @@
 namespace dynobj::mapclean {
 namespace {
 
-constexpr std::int64_t kHalfRange = std::int64_t{1} << 20;  // 21 bits per axis, signed
-
 std::uint64_t packAxis(double v, double voxel) {
   const auto i = static_cast<std::int64_t>(std::floor(v / voxel));
-  if (i < -kHalfRange || i >= kHalfRange)
+  if (i < -VoxelMap::kHalfRange || i >= VoxelMap::kHalfRange)
     throw std::out_of_range("point coordinate " + std::to_string(v) +
                             " m is too far from the origin for the voxel map");
-  return static_cast<std::uint64_t>(i + kHalfRange);
+  return static_cast<std::uint64_t>(i + VoxelMap::kHalfRange);
 }
 
 }  // namespace
@@ -117,23 +115,6 @@ void VoxelMap::merge(const Slot& s) {
   c.intensity = mean(c.intensity, s.cell.intensity);
   c.n += s.cell.n;
   c.last = std::max(c.last, s.cell.last);
-}
-
-void VoxelMap::corner(std::uint64_t key, double& x, double& y, double& z) const {
-  constexpr std::uint64_t kAxis = (std::uint64_t{1} << 21) - 1;
-  const auto axis = [&](std::uint64_t bits) {
-    return static_cast<double>(static_cast<std::int64_t>(bits & kAxis) - kHalfRange) * voxel_;
-  };
-  x = axis(key >> 42);
-  y = axis(key >> 21);
-  z = axis(key);
-}
-
-MapPoint VoxelMap::centroid(const Slot& s) const {
-  double x = 0, y = 0, z = 0;
-  corner(s.key, x, y, z);
-  return {static_cast<float>(x + s.cell.dx), static_cast<float>(y + s.cell.dy),
-          static_cast<float>(z + s.cell.dz), s.cell.intensity};
 }
 
 bool VoxelMap::insert(const MapPoint& p, std::uint32_t stamp) {

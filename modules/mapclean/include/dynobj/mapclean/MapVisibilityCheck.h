@@ -83,8 +83,9 @@ class MapVisibilityCheck {
   /// 1.6 cm steps at 20-32 m, far below the margin; half the memory).
   struct ScanView {
     std::int64_t timestamp_ns = 0;
-    cv::Mat range;    ///< [m] per pixel (CV_32F or CV_16F), 0 = no return
-    cv::Mat nearest;  ///< per pixel: nearest return of its window (+inf: none)
+    /// Per pixel (CV_32FC2 or CV_16FC2, one read for both): [0] the range [m], 0 = no return;
+    /// [1] the nearest return of its window, +inf: none.
+    cv::Mat images;
     Eigen::Isometry3f to_sensor = Eigen::Isometry3f::Identity();
     float near = 0, far = 0;
   };

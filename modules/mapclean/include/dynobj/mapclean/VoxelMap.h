@@ -48,6 +48,7 @@ class VoxelMap {
   /// Voxel index of a point, packed (21 bits per axis). Throws std::out_of_range beyond
   /// +-2^20 voxels from the origin. Only for voxel size > 0.
   std::uint64_t keyOf(float x, float y, float z) const;
+  static constexpr std::int64_t kHalfRange = std::int64_t{1} << 20;  ///< 21 bits per axis, signed
 
   /// Points inserted into the voxel `key` (0 when empty). Only for voxel size > 0.
   std::uint32_t countAt(std::uint64_t key) const;
@@ -122,7 +123,12 @@ class VoxelMap {
   /// Adds a voxel of a map of the same voxel size (extract), merged with the one at its key.
   void merge(const Slot& s);
   /// The centroid and mean intensity of a voxel.
-  MapPoint centroid(const Slot& s) const;
+  MapPoint centroid(const Slot& s) const {
+    double x = 0, y = 0, z = 0;
+    corner(s.key, x, y, z);
+    return {static_cast<float>(x + s.cell.dx), static_cast<float>(y + s.cell.dy),
+            static_cast<float>(z + s.cell.dz), s.cell.intensity};
+  }
 
   /// Moves to `other` (same voxel size) every voxel for which keep(key, count, views) is false;
   /// returns how many voxels moved.
@@ -155,7 +161,15 @@ class VoxelMap {
   /// shrinks a table under a tenth full.
   void reseat(std::size_t start);
   /// The corner of voxel `key` [m].
-  void corner(std::uint64_t key, double& x, double& y, double& z) const;
+  void corner(std::uint64_t key, double& x, double& y, double& z) const {
+    constexpr std::uint64_t kAxis = (std::uint64_t{1} << 21) - 1;
+    const auto axis = [&](std::uint64_t bits) {
+      return static_cast<double>(static_cast<std::int64_t>(bits & kAxis) - kHalfRange) * voxel_;
+    };
+    x = axis(key >> 42);
+    y = axis(key >> 21);
+    z = axis(key);
+  }
 
   template <class Fn>
   void visit(Slot& s, Fn& fn) const {
