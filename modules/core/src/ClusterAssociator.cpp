@@ -12,25 +12,16 @@
 namespace dynobj::core {
 
 void AssociationParams::visit(ParamVisitor& v) {
-  v.value("gate_distance", gate_distance);
-  v.value("new_track_speed", new_track_speed);
-  v.value("new_track_length", new_track_length);
-  v.value("split_radius", split_radius);
-  v.value("split_min_share", split_min_share);
-  v.value("split_match_radius", split_match_radius);
+  v.value("gate_distance", gate_distance, kPositive);
+  v.value("new_track_speed", new_track_speed, {0, 100});
+  v.value("new_track_length", new_track_length, {0, 100});
+  v.value("split_radius", split_radius, {0, 10});
+  v.value("split_min_share", split_min_share, {0, 0.5});
+  v.value("split_match_radius", split_match_radius, {0, 10});
   v.value("split_rest_majority", split_rest_majority);
   v.value("split_hold_back", split_hold_back);
   v.value("movers_first", movers_first);
   v.value("carve_dropped", carve_dropped);
-}
-
-void AssociationParams::validate() const {
-  requirePositive("gate_distance", gate_distance);
-  requireInRange("new_track_speed", new_track_speed, 0, 100);
-  requireInRange("new_track_length", new_track_length, 0, 100);
-  requireInRange("split_radius", split_radius, 0, 10);
-  requireInRange("split_min_share", split_min_share, 0, 0.5);
-  requireInRange("split_match_radius", split_match_radius, 0, 10);
 }
 
 ClusterAssociator::ClusterAssociator(const AssociationParams& p) : p_(p) {

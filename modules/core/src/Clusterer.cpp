@@ -10,21 +10,17 @@
 namespace dynobj::core {
 
 void ClusteringParams::visit(ParamVisitor& v) {
-  v.value("horizontal_distance", horizontal_distance);
-  v.value("vertical_distance", vertical_distance);
-  v.value("min_points", min_points);
-  v.value("weak_min_points", weak_min_points);
-  v.value("max_points", max_points);
+  v.value("horizontal_distance", horizontal_distance, kPositive);
+  v.value("vertical_distance", vertical_distance, kPositive);
+  v.value("min_points", min_points, {1, 1000000});
+  v.value("weak_min_points", weak_min_points, {0, 1000000});  // >= min_points: none
+  v.value("max_points", max_points, {static_cast<double>(min_points), 100000000});
   v.value("max_area", max_area);
   v.value("voxel", voxel);
 }
 
 void ClusteringParams::validate() const {
-  requirePositive("horizontal_distance", horizontal_distance);
-  requirePositive("vertical_distance", vertical_distance);
-  requireInRange("min_points", min_points, 1, 1000000);
-  requireInRange("max_points", max_points, min_points, 100000000);
-  requireInRange("weak_min_points", weak_min_points, 0, 1000000);  // >= min_points: none
+  StageParams::validate();
   requireInRange("max_area", max_area, 0, 1e6);
   requireInRange("voxel", voxel, 0, 0.5 * std::min(horizontal_distance, vertical_distance));
 }

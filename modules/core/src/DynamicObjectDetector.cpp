@@ -62,11 +62,7 @@ DetectionResult DetectionResult::clone() const {
 }
 
 void PipelineParams::visit(ParamVisitor& v) {
-  v.value("threads", threads);
-}
-
-void PipelineParams::validate() const {
-  requireInRange("threads", threads, 1, 2);
+  v.value("threads", threads, {1, 2});
 }
 
 void DetectorParams::load(const mrpt::config::CConfigFileBase& c, const std::string& prefix) {

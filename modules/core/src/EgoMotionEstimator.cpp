@@ -95,42 +95,23 @@ void bestTwo(const std::uint8_t* a, const cv::Mat& prev, const std::vector<int>&
 }  // namespace
 
 void EgoMotionParams::visit(ParamVisitor& v) {
-  v.value("features", features);
-  v.value("scale_factor", scale_factor);
-  v.value("levels", levels);
-  v.value("fast_threshold", fast_threshold);
-  v.value("ratio", ratio);
-  v.value("match_window", match_window);
-  v.value("border", border);
-  v.value("inlier_distance", inlier_distance);
-  v.value("inlier_range_factor", inlier_range_factor);
-  v.value("pixel_spread", pixel_spread);
-  v.value("still_match_pixels", still_match_pixels);
-  v.value("iterations", iterations);
-  v.value("confidence", confidence);
-  v.value("refinements", refinements);
-  v.value("min_inliers", min_inliers);
-  v.value("min_inlier_ratio", min_inlier_ratio);
+  v.value("features", features, {10, 100000});
+  v.value("scale_factor", scale_factor, {1.01, 4});
+  v.value("levels", levels, {1, 8});
+  v.value("fast_threshold", fast_threshold, {1, 255});
+  v.value("ratio", ratio, {0.1, 1.0});
+  v.value("match_window", match_window, {0, 100000});
+  v.value("border", border, {0, 20});
+  v.value("inlier_distance", inlier_distance, kPositive);
+  v.value("inlier_range_factor", inlier_range_factor, {0, 1});
+  v.value("pixel_spread", pixel_spread, {0, 100});
+  v.value("still_match_pixels", still_match_pixels, {0, 1000});
+  v.value("iterations", iterations, {1, 100000});
+  v.value("confidence", confidence, {0.5, 1});
+  v.value("refinements", refinements, {0, 100});
+  v.value("min_inliers", min_inliers, {3, 100000});
+  v.value("min_inlier_ratio", min_inlier_ratio, {0, 1});
   v.value("seed", seed);
-}
-
-void EgoMotionParams::validate() const {
-  requireInRange("features", features, 10, 100000);
-  requireInRange("scale_factor", scale_factor, 1.01, 4);
-  requireInRange("levels", levels, 1, 8);
-  requireInRange("fast_threshold", fast_threshold, 1, 255);
-  requireInRange("ratio", ratio, 0.1, 1.0);
-  requireInRange("match_window", match_window, 0, 100000);
-  requireInRange("border", border, 0, 20);
-  requirePositive("inlier_distance", inlier_distance);
-  requireInRange("inlier_range_factor", inlier_range_factor, 0, 1);
-  requireInRange("pixel_spread", pixel_spread, 0, 100);
-  requireInRange("still_match_pixels", still_match_pixels, 0, 1000);
-  requireInRange("iterations", iterations, 1, 100000);
-  requireInRange("confidence", confidence, 0.5, 1);
-  requireInRange("refinements", refinements, 0, 100);
-  requireInRange("min_inliers", min_inliers, 3, 100000);
-  requireInRange("min_inlier_ratio", min_inlier_ratio, 0, 1);
 }
 
 EgoMotionEstimator::EgoMotionEstimator(const EgoMotionParams& p)

@@ -13,41 +13,27 @@ namespace dynobj::core {
 
 void EgoRefinementParams::visit(ParamVisitor& v) {
   v.value("enabled", enabled);
-  v.value("points", points);
-  v.value("iterations", iterations);
-  v.value("coarse_iterations", coarse_iterations);
-  v.value("max_distance", max_distance);
-  v.value("final_distance", final_distance);
-  v.value("max_offset", max_offset);
-  v.value("huber", huber);
-  v.value("damping", damping);
-  v.value("normal_baseline", normal_baseline);
-  v.value("ground_chain", ground_chain);
-  v.value("ground_flatness", ground_flatness);
-  v.value("min_correspondences", min_correspondences);
-  v.value("degenerate_share", degenerate_share);
-  v.value("max_correction", max_correction);
-  v.degrees("max_correction_angle", max_correction_angle);
+  v.value("points", points, {10, 10000000});
+  v.value("iterations", iterations, {1, 100});
+  v.value("coarse_iterations", coarse_iterations, {0, 100});
+  v.value("max_distance", max_distance, kPositive);
+  v.value("final_distance", final_distance, kPositive);
+  v.value("max_offset", max_offset, {0, 1000});
+  v.value("huber", huber, kPositive);
+  v.value("damping", damping, {0, 1e6});
+  v.value("normal_baseline", normal_baseline, {0, 10});
+  v.value("ground_chain", ground_chain, {0, 1000});
+  v.value("ground_flatness", ground_flatness, kPositive);
+  v.value("min_correspondences", min_correspondences, {6, 10000000});
+  v.value("degenerate_share", degenerate_share, {0, 1.0 / 3.0});
+  v.value("max_correction", max_correction, kPositive);
+  v.degrees("max_correction_angle", max_correction_angle, kPositive);
 }
 
 void EgoRefinementParams::validate() const {
-  requireInRange("points", points, 10, 10000000);
-  requireInRange("iterations", iterations, 1, 100);
-  requireInRange("coarse_iterations", coarse_iterations, 0, 100);
-  requirePositive("max_distance", max_distance);
-  requirePositive("final_distance", final_distance);
+  StageParams::validate();
   if (final_distance > max_distance)
     throwParameterError("final_distance", "must not exceed max_distance");
-  requireInRange("max_offset", max_offset, 0, 1000);
-  requirePositive("huber", huber);
-  requireInRange("damping", damping, 0, 1e6);
-  requireInRange("normal_baseline", normal_baseline, 0, 10);
-  requireInRange("ground_chain", ground_chain, 0, 1000);
-  requirePositive("ground_flatness", ground_flatness);
-  requireInRange("min_correspondences", min_correspondences, 6, 10000000);
-  requireInRange("degenerate_share", degenerate_share, 0, 1.0 / 3.0);
-  requirePositive("max_correction", max_correction);
-  requirePositive("max_correction_angle", max_correction_angle);
 }
 
 namespace {

@@ -35,25 +35,19 @@ std::uint32_t orderKey(float x) {
 }  // namespace
 
 void ForegroundParams::visit(ParamVisitor& v) {
-  v.value("kernel_half_width", kernel_half_width);
-  v.value("kernel_half_height", kernel_half_height);
-  v.value("sigma_horizontal", sigma_horizontal);
-  v.value("sigma_vertical", sigma_vertical);
-  v.value("threshold", threshold);
+  v.value("kernel_half_width", kernel_half_width, {1, 200});
+  v.value("kernel_half_height", kernel_half_height, {0, 50});
+  v.value("sigma_horizontal", sigma_horizontal, kPositive);
+  v.value("sigma_vertical", sigma_vertical, kPositive);
+  v.value("threshold", threshold, {0, 255});
   v.value("absolute", absolute);
-  v.value("stretch_low", stretch_low);
-  v.value("stretch_high", stretch_high);
+  v.value("stretch_low", stretch_low, {0, 100});
+  v.value("stretch_high", stretch_high, {0, 100});
   v.value("exclude_ground", exclude_ground);
 }
 
 void ForegroundParams::validate() const {
-  requireInRange("kernel_half_width", kernel_half_width, 1, 200);
-  requireInRange("kernel_half_height", kernel_half_height, 0, 50);
-  requirePositive("sigma_horizontal", sigma_horizontal);
-  requirePositive("sigma_vertical", sigma_vertical);
-  requireInRange("threshold", threshold, 0, 255);
-  requireInRange("stretch_low", stretch_low, 0, 100);
-  requireInRange("stretch_high", stretch_high, 0, 100);
+  StageParams::validate();
   if (stretch_high <= stretch_low) throwParameterError("stretch_high", "must exceed stretch_low");
 }
 

@@ -91,15 +91,9 @@ std::string FrameWarning::text() const {
 }
 
 void FrameCheckParams::visit(ParamVisitor& v) {
-  v.value("max_gap", max_gap);
-  v.value("max_lost_columns", max_lost_columns);
-  v.value("max_ego_failures", max_ego_failures);
-}
-
-void FrameCheckParams::validate() const {
-  requirePositive("max_gap", max_gap);
-  requireInRange("max_lost_columns", max_lost_columns, 0.01, 1.0);
-  requireInRange("max_ego_failures", max_ego_failures, 1, 1000000);
+  v.value("max_gap", max_gap, kPositive);
+  v.value("max_lost_columns", max_lost_columns, {0.01, 1.0});
+  v.value("max_ego_failures", max_ego_failures, {1, 1000000});
 }
 
 FrameCheck::FrameCheck(const FrameCheckParams& p) : p_(p) {

@@ -12,41 +12,23 @@ namespace dynobj::core {
 
 void FreeSpaceParams::visit(ParamVisitor& v) {
   v.value("enabled", enabled);
-  v.value("margin", margin);
-  v.value("range_factor", range_factor);
-  v.value("min_free_ratio", min_free_ratio);
-  v.value("min_evidence", min_evidence);
+  v.value("margin", margin, kPositive);
+  v.value("range_factor", range_factor, {0, 1});
+  v.value("min_free_ratio", min_free_ratio, {0, 1});
+  v.value("min_evidence", min_evidence, {0, 1000000});
   v.value("require_proof", require_proof);
-  v.value("lookback", lookback);
-  v.value("max_lookback", max_lookback);
-  v.value("clear_tolerances", clear_tolerances);
-  v.value("max_travel", max_travel);
-  v.value("side_rays", side_rays);
-  v.value("side_rows", side_rows);
-  v.value("min_solid_ratio", min_solid_ratio);
-  v.value("slide_free_ratio", slide_free_ratio);
-  v.value("clearance", clearance);
-  v.value("release_free_ratio", release_free_ratio);
+  v.value("lookback", lookback, {1, 1000});
+  v.value("max_lookback", max_lookback, {0, 1000});
+  v.value("clear_tolerances", clear_tolerances, {0, 100});
+  v.value("max_travel", max_travel, kPositive);
+  v.value("side_rays", side_rays, {0, 100});
+  v.value("side_rows", side_rows, {0, 100});
+  v.value("min_solid_ratio", min_solid_ratio, {0, 1});
+  v.value("slide_free_ratio", slide_free_ratio, {0, 1});
+  v.value("clearance", clearance, {0, 100});
+  v.value("release_free_ratio", release_free_ratio, {0, 1});
   v.value("exclude_own_past", exclude_own_past);
-  v.value("thin_frames", thin_frames);
-}
-
-void FreeSpaceParams::validate() const {
-  requirePositive("margin", margin);
-  requireInRange("range_factor", range_factor, 0, 1);
-  requireInRange("min_free_ratio", min_free_ratio, 0, 1);
-  requireInRange("min_evidence", min_evidence, 0, 1000000);
-  requireInRange("lookback", lookback, 1, 1000);
-  requireInRange("max_lookback", max_lookback, 0, 1000);
-  requireInRange("clear_tolerances", clear_tolerances, 0, 100);
-  requirePositive("max_travel", max_travel);
-  requireInRange("side_rays", side_rays, 0, 100);
-  requireInRange("side_rows", side_rows, 0, 100);
-  requireInRange("min_solid_ratio", min_solid_ratio, 0, 1);
-  requireInRange("slide_free_ratio", slide_free_ratio, 0, 1);
-  requireInRange("clearance", clearance, 0, 100);
-  requireInRange("release_free_ratio", release_free_ratio, 0, 1);
-  requireInRange("thin_frames", thin_frames, 0, 10);
+  v.value("thin_frames", thin_frames, {0, 10});
 }
 
 namespace {

@@ -9,15 +9,9 @@
 namespace dynobj::core {
 
 void GroundParams::visit(ParamVisitor& v) {
-  v.degrees("max_slope", max_slope);
-  v.value("height_tolerance", height_tolerance);
-  v.value("max_step", max_step);
-}
-
-void GroundParams::validate() const {
-  requireInRange("max_slope", max_slope, 0, M_PI / 2);
-  requirePositive("height_tolerance", height_tolerance);
-  requireInRange("max_step", max_step, 0, 1);
+  v.degrees("max_slope", max_slope, {0, M_PI / 2});
+  v.value("height_tolerance", height_tolerance, kPositive);
+  v.value("max_step", max_step, {0, 1});
 }
 
 GroundSegmenter::GroundSegmenter(const GroundParams& p) : p_(p) {

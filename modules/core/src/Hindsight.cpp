@@ -68,28 +68,19 @@ double secondsBetween(const Hindsight::Held& a, const Hindsight::Held& b, std::s
 }  // namespace
 
 void HindsightParams::visit(ParamVisitor& v) {
-  v.value("lag", lag);
-  v.value("min_speed", min_speed);
-  v.value("speed_window", speed_window);
-  v.value("min_dynamic", min_dynamic);
+  v.value("lag", lag, {0, 60});
+  v.value("min_speed", min_speed, {0, 100});
+  v.value("speed_window", speed_window, {0, 60});
+  v.value("min_dynamic", min_dynamic, {0, 60});
   v.value("start_check", start_check);
-  v.value("max_growth", max_growth);
+  v.value("max_growth", max_growth, kPositive);
   v.value("stop_check", stop_check);
-  v.value("rest_speed", rest_speed);
+  v.value("rest_speed", rest_speed, {0, 100});
   v.value("later_surface_check", later_surface_check);
   v.value("later_surface_points", later_surface_points);
   v.value("way_along", way_along);
   v.value("fill_gaps", fill_gaps);
   v.value("fill_before", fill_before);
-}
-
-void HindsightParams::validate() const {
-  requireInRange("lag", lag, 0, 60);
-  requireInRange("min_speed", min_speed, 0, 100);
-  requireInRange("speed_window", speed_window, 0, 60);
-  requireInRange("min_dynamic", min_dynamic, 0, 60);
-  requirePositive("max_growth", max_growth);
-  requireInRange("rest_speed", rest_speed, 0, 100);
 }
 
 Hindsight::Hindsight(const HindsightParams& p, const RegionGrowingParams& growing,

@@ -10,38 +10,27 @@
 namespace dynobj::core {
 
 void MovementParams::visit(ParamVisitor& v) {
-  v.value("window", window);
-  v.value("min_window", min_window);
+  v.value("window", window, {2, 1000});
+  v.value("min_window", min_window, {2, 1000});  // >= window: off
   v.value("stop_window", stop_window);
   v.value("stop_speed", stop_speed);
-  v.value("min_displacement", min_displacement);
-  v.value("min_straightness", min_straightness);
+  v.value("min_displacement", min_displacement, kPositive);
+  v.value("min_straightness", min_straightness, {0, 1});
   v.value("planar", planar);
-  v.degrees("long_object_angle", long_object_angle);
-  v.value("upright_length", upright_length);
-  v.value("upright_height", upright_height);
-  v.value("upright_max_elongation", upright_max_elongation);
-  v.value("rigid_tolerance", rigid_tolerance);
-  v.value("rigid_ends_length", rigid_ends_length);
-  v.value("long_object_ego_ratio", long_object_ego_ratio);
-  v.value("max_speed", max_speed);
+  v.degrees("long_object_angle", long_object_angle, {0, M_PI / 2});
+  v.value("upright_length", upright_length, {0, 100});
+  v.value("upright_height", upright_height, {0, 100});
+  v.value("upright_max_elongation", upright_max_elongation, {1, 1e6});
+  v.value("rigid_tolerance", rigid_tolerance, {0, 10});
+  v.value("rigid_ends_length", rigid_ends_length, {0, 1000});
+  v.value("long_object_ego_ratio", long_object_ego_ratio, {0, 1000});
+  v.value("max_speed", max_speed, kPositive);
 }
 
 void MovementParams::validate() const {
-  requireInRange("window", window, 2, 1000);
-  requireInRange("min_window", min_window, 2, 1000);    // >= window: off
+  StageParams::validate();
   requireInRange("stop_window", stop_window, 2, 1000);  // > window: off
   requireInRange("stop_speed", stop_speed, 0, 100);
-  requirePositive("min_displacement", min_displacement);
-  requireInRange("min_straightness", min_straightness, 0, 1);
-  requireInRange("long_object_angle", long_object_angle, 0, M_PI / 2);
-  requireInRange("upright_length", upright_length, 0, 100);
-  requireInRange("upright_height", upright_height, 0, 100);
-  requireInRange("upright_max_elongation", upright_max_elongation, 1, 1e6);
-  requireInRange("rigid_tolerance", rigid_tolerance, 0, 10);
-  requireInRange("rigid_ends_length", rigid_ends_length, 0, 1000);
-  requireInRange("long_object_ego_ratio", long_object_ego_ratio, 0, 1000);
-  requirePositive("max_speed", max_speed);
 }
 
 MovementAnalyzer::MovementAnalyzer(const MovementParams& p) : p_(p) {

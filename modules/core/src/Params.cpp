@@ -11,11 +11,11 @@ namespace {
 class Reader : public ParamVisitor {
  public:
   Reader(const ::mrpt::config::CConfigFileBase& c, const std::string& s) : c_(c), s_(s) {}
-  void value(const char* key, double& v) override { v = readDouble(c_, s_, key, v); }
-  void value(const char* key, int& v) override { v = readInt(c_, s_, key, v); }
-  void value(const char* key, bool& v) override { v = readBool(c_, s_, key, v); }
-  void value(const char* key, std::string& v) override { v = readString(c_, s_, key, v); }
-  void degrees(const char* key, double& v) override { v = readDegrees(c_, s_, key, v); }
+  void real(const char* key, double& v, const Range&) override { v = readDouble(c_, s_, key, v); }
+  void integer(const char* key, int& v, const Range&) override { v = readInt(c_, s_, key, v); }
+  void flag(const char* key, bool& v) override { v = readBool(c_, s_, key, v); }
+  void text(const char* key, std::string& v) override { v = readString(c_, s_, key, v); }
+  void angle(const char* key, double& v, const Range&) override { v = readDegrees(c_, s_, key, v); }
 
  private:
   const ::mrpt::config::CConfigFileBase& c_;
@@ -25,11 +25,13 @@ class Reader : public ParamVisitor {
 class Writer : public ParamVisitor {
  public:
   Writer(::mrpt::config::CConfigFileBase& c, const std::string& s) : c_(c), s_(s) {}
-  void value(const char* key, double& v) override { c_.write(s_, key, v); }
-  void value(const char* key, int& v) override { c_.write(s_, key, v); }
-  void value(const char* key, bool& v) override { c_.write(s_, key, v); }
-  void value(const char* key, std::string& v) override { c_.write(s_, key, v); }
-  void degrees(const char* key, double& v) override { c_.write(s_, key, v * 180.0 / M_PI); }
+  void real(const char* key, double& v, const Range&) override { c_.write(s_, key, v); }
+  void integer(const char* key, int& v, const Range&) override { c_.write(s_, key, v); }
+  void flag(const char* key, bool& v) override { c_.write(s_, key, v); }
+  void text(const char* key, std::string& v) override { c_.write(s_, key, v); }
+  void angle(const char* key, double& v, const Range&) override {
+    c_.write(s_, key, v * 180.0 / M_PI);
+  }
 
  private:
   ::mrpt::config::CConfigFileBase& c_;
@@ -38,12 +40,32 @@ class Writer : public ParamVisitor {
 
 class KeyCollector : public ParamVisitor {
  public:
-  void value(const char* key, double&) override { keys.emplace_back(key); }
-  void value(const char* key, int&) override { keys.emplace_back(key); }
-  void value(const char* key, bool&) override { keys.emplace_back(key); }
-  void value(const char* key, std::string&) override { keys.emplace_back(key); }
-  void degrees(const char* key, double&) override { keys.emplace_back(key); }
   std::vector<std::string> keys;
+
+ protected:
+  void real(const char* key, double&, const Range&) override { keys.emplace_back(key); }
+  void integer(const char* key, int&, const Range&) override { keys.emplace_back(key); }
+  void flag(const char* key, bool&) override { keys.emplace_back(key); }
+  void text(const char* key, std::string&) override { keys.emplace_back(key); }
+  void angle(const char* key, double&, const Range&) override { keys.emplace_back(key); }
+};
+
+/// Throws at the first number outside its range.
+class RangeCheck : public ParamVisitor {
+ protected:
+  void real(const char* key, double& v, const Range& r) override { check(key, v, r); }
+  void integer(const char* key, int& v, const Range& r) override { check(key, v, r); }
+  void flag(const char*, bool&) override {}
+  void text(const char*, std::string&) override {}
+  void angle(const char* key, double& v, const Range& r) override { check(key, v, r); }
+
+ private:
+  static void check(const char* key, double v, const Range& r) {
+    if (r.positive)
+      requirePositive(key, v);
+    else if (r.lo > -HUGE_VAL || r.hi < HUGE_VAL)
+      requireInRange(key, v, r.lo, r.hi);
+  }
 };
 
 }  // namespace
@@ -52,6 +74,11 @@ std::vector<std::string> StageParams::keys() const {
   KeyCollector k;
   const_cast<StageParams*>(this)->visit(k);  // the collector only reads the names
   return k.keys;
+}
+
+void StageParams::validate() const {
+  RangeCheck check;
+  const_cast<StageParams*>(this)->visit(check);  // the check only reads the fields
 }
 
 void StageParams::loadFromConfigFile(const ::mrpt::config::CConfigFileBase& c,

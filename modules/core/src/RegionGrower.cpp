@@ -10,27 +10,16 @@
 namespace dynobj::core {
 
 void RegionGrowingParams::visit(ParamVisitor& v) {
-  v.value("distance", distance);
-  v.value("range_factor", range_factor);
-  v.value("depth_factor", depth_factor);
-  v.value("slope_factor", slope_factor);
-  v.value("set_back_radius", set_back_radius);
-  v.value("max_extent", max_extent);
-  v.value("max_pixels", max_pixels);
+  v.value("distance", distance, kPositive);
+  v.value("range_factor", range_factor, {0, 100});
+  v.value("depth_factor", depth_factor, {0, 1});
+  v.value("slope_factor", slope_factor, {0, 100});
+  v.value("set_back_radius", set_back_radius, {0, 100});
+  v.value("max_extent", max_extent, kPositive);
+  v.value("max_pixels", max_pixels, {1, 10000000});
   v.value("keep_out_settled", keep_out_settled);
-  v.value("nearer_rest_radius", nearer_rest_radius);
+  v.value("nearer_rest_radius", nearer_rest_radius, {0, 10});
   v.value("past_surface_check", past_surface_check);
-}
-
-void RegionGrowingParams::validate() const {
-  requirePositive("distance", distance);
-  requireInRange("range_factor", range_factor, 0, 100);
-  requireInRange("depth_factor", depth_factor, 0, 1);
-  requireInRange("slope_factor", slope_factor, 0, 100);
-  requireInRange("set_back_radius", set_back_radius, 0, 100);
-  requirePositive("max_extent", max_extent);
-  requireInRange("max_pixels", max_pixels, 1, 10000000);
-  requireInRange("nearer_rest_radius", nearer_rest_radius, 0, 10);
 }
 
 bool RegionGrowingParams::joins(const cv::Vec3f& p, double rp, const cv::Vec3f& q, double rq,

@@ -9,23 +9,14 @@ namespace dynobj::core {
 
 void TrackingParams::visit(ParamVisitor& v) {
   v.value("prediction", prediction);
-  v.value("max_missed", max_missed);
-  v.value("process_noise", process_noise);
-  v.value("measurement_noise", measurement_noise);
+  v.value("max_missed", max_missed, {0, 1000});
+  v.value("process_noise", process_noise, kPositive);
+  v.value("measurement_noise", measurement_noise, kPositive);
   v.value("hysteresis", hysteresis);
-  v.value("confirm_frames", confirm_frames);
-  v.value("release_frames", release_frames);
-  v.value("settled_frames", settled_frames);
+  v.value("confirm_frames", confirm_frames, {1, 1000});
+  v.value("release_frames", release_frames, {1, 1000});
+  v.value("settled_frames", settled_frames, {1, 100000});
   v.value("stop_at_rest", stop_at_rest);
-}
-
-void TrackingParams::validate() const {
-  requireInRange("max_missed", max_missed, 0, 1000);
-  requirePositive("process_noise", process_noise);
-  requirePositive("measurement_noise", measurement_noise);
-  requireInRange("confirm_frames", confirm_frames, 1, 1000);
-  requireInRange("release_frames", release_frames, 1, 1000);
-  requireInRange("settled_frames", settled_frames, 1, 100000);
 }
 
 TrackManager::TrackManager(const TrackingParams& p, int window)

@@ -54,18 +54,15 @@ void addFeet(const core::LidarFrame& f, const cv::Mat_<std::uint8_t>& ground,
 }  // namespace
 
 void LabelParams::visit(core::ParamVisitor& v) {
-  v.value("distance", distance);
-  v.value("max_extent", max_extent);
-  v.value("seed_distance", seed_distance);
-  v.value("cache_sweeps", cache_sweeps);
+  v.value("distance", distance, {0.01, 5});
+  v.value("max_extent", max_extent, {0.1, 50});
+  v.value("seed_distance", seed_distance, {0.01, 5});
+  v.value("cache_sweeps", cache_sweeps, {2, 10000});
   v.value("feet", feet);
 }
 
 void LabelParams::validate() const {
-  core::requireInRange("distance", distance, 0.01, 5);
-  core::requireInRange("max_extent", max_extent, 0.1, 50);
-  core::requireInRange("seed_distance", seed_distance, 0.01, 5);
-  core::requireInRange("cache_sweeps", cache_sweeps, 2, 10000);
+  core::StageParams::validate();
   growing.validate();
   ground.validate();
   ego_motion.validate();

@@ -11,37 +11,21 @@
 namespace dynobj::mapclean {
 
 void MapCleanParams::visit(core::ParamVisitor& v) {
-  v.value("voxel_size", voxel_size);
-  v.value("backfill_window", backfill_window);
-  v.value("box_margin", box_margin);
-  v.value("min_range", min_range);
-  v.value("dynamic_vote", dynamic_vote);
+  v.value("voxel_size", voxel_size, {0.0, 10.0});
+  v.value("backfill_window", backfill_window, {0.0, 3600.0});
+  v.value("box_margin", box_margin, {0.0, 5.0});
+  v.value("min_range", min_range, {0.0, 1000.0});
+  v.value("dynamic_vote", dynamic_vote, {0.0, 1000.0});
   v.value("level_poses", level_poses);
   v.value("free_space_check", free_space_check);
-  v.value("free_space_stride", free_space_stride);
-  v.value("final_after", final_after);
-  v.value("free_space_margin", visibility.margin);
-  v.value("free_space_margin_rel", visibility.margin_rel);
-  v.value("free_space_window", visibility.window);
-  v.value("free_space_min_views", visibility.min_views);
-  v.value("free_space_ratio", visibility.ratio);
-  v.value("free_space_past", visibility.past);
-}
-
-void MapCleanParams::validate() const {
-  core::requireInRange("voxel_size", voxel_size, 0.0, 10.0);
-  core::requireInRange("backfill_window", backfill_window, 0.0, 3600.0);
-  core::requireInRange("box_margin", box_margin, 0.0, 5.0);
-  core::requireInRange("min_range", min_range, 0.0, 1000.0);
-  core::requireInRange("dynamic_vote", dynamic_vote, 0.0, 1000.0);
-  core::requireInRange("free_space_stride", free_space_stride, 1, 1000000);
-  core::requireInRange("final_after", final_after, 0.0, 86400.0);
-  core::requireInRange("free_space_margin", visibility.margin, 0.0, 100.0);
-  core::requireInRange("free_space_margin_rel", visibility.margin_rel, 0.0, 10.0);
-  core::requireInRange("free_space_window", visibility.window, 0, 100);
-  core::requireInRange("free_space_min_views", visibility.min_views, 1, 65535);
-  core::requireInRange("free_space_ratio", visibility.ratio, 0.0, 1000.0);
-  core::requireInRange("free_space_past", visibility.past, 0.0, 3600.0);
+  v.value("free_space_stride", free_space_stride, {1, 1000000});
+  v.value("final_after", final_after, {0.0, 86400.0});
+  v.value("free_space_margin", visibility.margin, {0.0, 100.0});
+  v.value("free_space_margin_rel", visibility.margin_rel, {0.0, 10.0});
+  v.value("free_space_window", visibility.window, {0, 100});
+  v.value("free_space_min_views", visibility.min_views, {1, 65535});
+  v.value("free_space_ratio", visibility.ratio, {0.0, 1000.0});
+  v.value("free_space_past", visibility.past, {0.0, 3600.0});
 }
 
 VisibilityParams MapCleanParams::freeSpace() const {

@@ -56,7 +56,6 @@ struct AssociationParams : public StageParams {
   bool carve_dropped = true;
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 class ClusterAssociator {

@@ -37,7 +37,6 @@ struct PipelineParams : public StageParams {
   int threads = 2;
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 /// Every stage's parameters, one INI section per stage: <prefix><name> for each (name, stage) of

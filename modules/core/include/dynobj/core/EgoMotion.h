@@ -44,7 +44,6 @@ struct EgoMotionParams : public StageParams {
   int seed = 1;                   ///< RANSAC random seed
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 /// The motion between the previous frame and the current one.

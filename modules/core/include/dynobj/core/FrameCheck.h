@@ -33,7 +33,6 @@ struct FrameCheckParams : public StageParams {
   int max_ego_failures = 10;
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 class FrameCheck {

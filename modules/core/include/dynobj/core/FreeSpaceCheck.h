@@ -86,7 +86,6 @@ struct FreeSpaceParams : public StageParams {
   double tolerance(double range) const { return margin + range_factor * range; }
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 struct FreeSpaceEvidence {

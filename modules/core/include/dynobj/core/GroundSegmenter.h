@@ -18,7 +18,6 @@ struct GroundParams : public StageParams {
   double max_step = 0.08;          ///< [m] a quarter of it is the noise allowance of the slope test
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 class GroundSegmenter {

@@ -79,7 +79,6 @@ struct HindsightParams : public StageParams {
   bool fill_before = true;
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 class Hindsight {

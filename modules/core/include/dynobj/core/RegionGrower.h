@@ -47,7 +47,6 @@ struct RegionGrowingParams : public StageParams {
   bool past_surface_check = true;
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 
   /// Eq. (25) as read here: do the points p and q (ranges rp, rq) of two neighbouring pixels
   /// whose rays are `gap` [rad] apart lie on one object? `q_above`: q's pixel is the one just

@@ -80,9 +80,10 @@ class SphericalProjection {
     const double ax = std::abs(x), ay = std::abs(y), mx = std::max(ax, ay);
     if (mx == 0.0) return 0.0;
     const double a = std::min(ax, ay) / mx, s = a * a;
-    double t = a * (0.99997726 +
-                    s * (-0.33262347 +
-                         s * (0.19354346 + s * (-0.11643287 + s * (0.05265332 + s * -0.01172120)))));
+    double t =
+        a * (0.99997726 +
+             s * (-0.33262347 +
+                  s * (0.19354346 + s * (-0.11643287 + s * (0.05265332 + s * -0.01172120)))));
     if (ay > ax) t = M_PI_2 - t;
     if (x < 0) t = M_PI - t;
     return y < 0 ? -t : t;

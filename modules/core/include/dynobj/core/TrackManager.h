@@ -29,7 +29,6 @@ struct TrackingParams : public StageParams {
                              ///< a passer; false = only once settled)
 
   void visit(ParamVisitor& v) override;
-  void validate() const override;
 };
 
 struct Track {

@@ -77,7 +77,6 @@ struct MapCleanParams : public core::StageParams {
   VisibilityParams freeSpace() const;
 
   void visit(core::ParamVisitor& v) override;
-  void validate() const override;
 };
 
 /// A tracked object of one frame, as the back-fill needs it (sensor frame box).
