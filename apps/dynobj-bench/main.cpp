@@ -2,8 +2,8 @@
 // dynobj-bench: times the detector per stage on synthetic frames (the simulator, in process, any
 // sensor preset), printing median and 99th percentile. For a recorded rawlog use dynobj-detect,
 // which prints the same table.
-#include <dynobj/core/TimingStats.h>
 #include <dynobj/eval/SimulatedFrames.h>
+#include <dynobj/eval/TimingStats.h>
 #include <dynobj/mrptio/SequenceRunner.h>
 
 #include <cstdio>
@@ -46,7 +46,7 @@ int run(int argc, char** argv) {
   dynobj::mrptio::SequenceOptions so;
   so.detector = dynobj::apps::loadDetectorParams(config.getValue());
   threads.apply(so.detector);
-  dynobj::core::TimingStats stats;
+  dynobj::eval::TimingStats stats;
   dynobj::mrptio::SequenceRunner(frames_in, so).run([&](const dynobj::mrptio::FrameResult& fr) {
     if (fr.frame.index >= static_cast<std::size_t>(warmup.getValue()))
       stats.add(fr.detection->timings);  // only the detector's own stage timings count

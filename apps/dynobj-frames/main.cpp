@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-frames: converts the LiDAR observations of a rawlog into LiDAR frames and writes their
 // range and intensity images as PNG, with one line of statistics per frame.
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 #include <dynobj/io/Png.h>
 #include <dynobj/mrptio/RawlogFrameSource.h>
 #include <dynobj/mrptio/SequenceRunner.h>

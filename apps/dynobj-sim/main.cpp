@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // dynobj-sim: simulates a labelled LiDAR sequence from a scenario file (docs/simulator.md).
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 #include <dynobj/io/Png.h>
 #include <dynobj/sim/LidarSimulator.h>
 #include <dynobj/sim/SequenceWriter.h>
@@ -86,9 +86,9 @@ int run(int argc, char** argv) {
     dynamic += static_cast<std::size_t>(cv::countNonZero(sweep.dynamic));
     if (k == preview.getValue()) {
       const cv::Mat img =
-          dynobj::core::overlayMask(dynobj::core::intensityToU8(sweep.frame), sweep.dynamic);
+          dynobj::io::overlayMask(dynobj::io::intensityToU8(sweep.frame), sweep.dynamic);
       dynobj::io::writePng(out.getValue() + "/" + s.name + ".preview.png",
-                           dynobj::core::scaleRows(img, 2));
+                           dynobj::io::scaleRows(img, 2));
     }
     path.push_back(sweep.sensor_pose.translation());
     if (k == topview.getValue())

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/eval/Overlay.h"
 
-#include <dynobj/core/FrameImages.h>
 #include <dynobj/core/SphericalProjection.h>
+#include <dynobj/io/FrameImages.h>
 
 #include <opencv2/imgproc.hpp>
 
@@ -13,13 +13,13 @@ cv::Mat overlayImage(const core::LidarFrame& frame, const cv::Mat_<std::uint8_t>
                      const std::vector<core::TrackedObject>& objects, int row_scale) {
   cv::Mat img;
   if (truth.empty()) {
-    img = core::overlayMask(core::intensityToU8(frame), predicted, {0, 0, 255});
+    img = io::overlayMask(io::intensityToU8(frame), predicted, {0, 0, 255});
   } else {
-    img = core::overlayMask(core::intensityToU8(frame), predicted & truth, {0, 0, 255});
+    img = io::overlayMask(io::intensityToU8(frame), predicted & truth, {0, 0, 255});
     img.setTo(cv::Scalar(0, 255, 255), predicted & ~truth);  // false positive: yellow
     img.setTo(cv::Scalar(255, 0, 0), truth & ~predicted);    // miss: blue
   }
-  img = core::scaleRows(img, row_scale);
+  img = io::scaleRows(img, row_scale);
   if (img.cols < 1024) {  // narrow scans (512 columns): twice as large, pixels kept sharp
     cv::resize(img, img, {}, 2, 2, cv::INTER_NEAREST);
     row_scale *= 2;

@@ -263,7 +263,7 @@ void writeJsonSummary(const std::string& path, const std::vector<RunResult>& run
     s << ",\n     \"ms\": ";
     if (r.timing) {
       s << "{";
-      const auto& stages = core::TimingStats::stages();
+      const auto& stages = eval::TimingStats::stages();
       for (std::size_t i = 0; i < stages.size(); i++)
         s << (i ? ", " : "") << "\"" << stages[i]
           << "\": {\"median\": " << num(r.timing->percentile(stages[i], 50), 4)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/io/Png.h"
 
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
@@ -33,8 +33,8 @@ void writePngAtomically(const std::string& path, const cv::Mat& image) {
 }
 
 void writeFramePngs(const core::LidarFrame& frame, const std::string& prefix, int row_scale) {
-  writePng(prefix + "range.png", core::scaleRows(core::rangeToColor(frame), row_scale));
-  writePng(prefix + "intensity.png", core::scaleRows(core::intensityToU8(frame), row_scale));
+  writePng(prefix + "range.png", io::scaleRows(io::rangeToColor(frame), row_scale));
+  writePng(prefix + "intensity.png", io::scaleRows(io::intensityToU8(frame), row_scale));
 }
 
 }  // namespace dynobj::io

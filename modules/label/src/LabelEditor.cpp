@@ -2,9 +2,9 @@
 #include "dynobj/label/LabelEditor.h"
 
 #include <dynobj/core/Config.h>
-#include <dynobj/core/FrameImages.h>
 #include <dynobj/core/SphericalProjection.h>
 #include <dynobj/io/AtomicFile.h>
+#include <dynobj/io/FrameImages.h>
 #include <dynobj/io/LabelFile.h>
 
 #include <algorithm>
@@ -256,8 +256,8 @@ Eigen::Isometry3d LabelEditor::motion(std::size_t from, std::size_t to, std::str
     return m;
   };
   cv::Mat_<float> ia, ib;
-  core::intensityToU8(a->frame).convertTo(ia, CV_32F);
-  core::intensityToU8(b->frame).convertTo(ib, CV_32F);
+  io::intensityToU8(a->frame).convertTo(ia, CV_32F);
+  io::intensityToU8(b->frame).convertTo(ib, CV_32F);
   est.estimate(a->frame, ia, exclude(from));
   const core::EgoMotion em = est.estimate(b->frame, ib, exclude(to));
   if (em.ok) {

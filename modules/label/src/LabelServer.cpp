@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/label/LabelServer.h"
 
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 #include <httplib.h>
 
 #include <atomic>
@@ -134,7 +134,7 @@ struct LabelServer::Impl {
         const core::LidarFrame& f = s->frame;
         const std::size_t n = f.pixelCount();
         std::string out(n * 2 + n * 12, '\0');
-        const cv::Mat_<std::uint8_t> inten = core::intensityToU8(f);
+        const cv::Mat_<std::uint8_t> inten = io::intensityToU8(f);
         for (int r = 0; r < f.rows(); r++)
           for (int c = 0; c < f.cols(); c++) {
             const std::size_t i = static_cast<std::size_t>(r * f.cols() + c);

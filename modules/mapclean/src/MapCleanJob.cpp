@@ -2,7 +2,7 @@
 #include "dynobj/mapclean/MapCleanJob.h"
 
 #include <dynobj/core/Config.h>
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 #include <dynobj/io/Png.h>
 #include <dynobj/io/PoseFile.h>
 #include <dynobj/mrptio/SequenceRunner.h>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dynobj/mrptio/RangeScanLayout.h"
 
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +57,7 @@ void frameToRangeScan(const core::LidarFrame& frame, mrpt::obs::CObservation3DRa
 
   out.hasIntensityImage = frame.has_intensity;
   if (frame.has_intensity) {
-    const cv::Mat_<std::uint8_t> img8 = core::stretchToU8(frame.intensity, frame.valid);
+    const cv::Mat_<std::uint8_t> img8 = io::stretchToU8(frame.intensity, frame.valid);
     out.intensityImage = mrpt::img::CImage(img8, mrpt::img::DEEP_COPY);
     out.intensityImageChannel = mrpt::obs::CObservation3DRangeScan::CH_IR;
     auto& layer = out.rangeImageOtherLayers[kIntensityLayer];

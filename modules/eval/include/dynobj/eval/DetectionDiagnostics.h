@@ -6,7 +6,7 @@
 #pragma once
 
 #include <dynobj/core/DynamicObjectDetector.h>
-#include <dynobj/core/TimingStats.h>
+#include <dynobj/eval/TimingStats.h>
 
 #include <cstddef>
 #include <map>
@@ -38,11 +38,11 @@ class DetectionDiagnostics {
   /// With ground truth: the metrics line and the seeds / misses line; else "".
   std::string metricsLines() const;
 
-  const core::TimingStats& timing() const { return timing_; }
+  const TimingStats& timing() const { return timing_; }
   std::size_t frames() const { return frames_; }
 
  private:
-  core::TimingStats timing_;
+  TimingStats timing_;
   Confusion total_, seeds_;
   bool truth_ = false;
   int rows_ = 0, cols_ = 0;

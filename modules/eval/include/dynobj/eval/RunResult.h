@@ -3,7 +3,7 @@
 // the per-point metrics, the object-level recall, the timings and a few overlay images.
 #pragma once
 
-#include <dynobj/core/TimingStats.h>
+#include <dynobj/eval/TimingStats.h>
 
 #include <opencv2/core.hpp>
 #include <optional>
@@ -23,8 +23,8 @@ struct RunResult {
   int rows = 0, cols = 0;
   double rate_hz = 10;  ///< sensor rate: the real-time budget is 1000 / rate_hz ms
   SequenceMetrics metrics;
-  std::optional<ObjectRecall> objects;      ///< when the instance and object files exist
-  std::optional<core::TimingStats> timing;  ///< per-stage times (detector runs only)
+  std::optional<ObjectRecall> objects;  ///< when the instance and object files exist
+  std::optional<TimingStats> timing;    ///< per-stage times (detector runs only)
   std::size_t ego_failed = 0;
   std::vector<std::pair<int, cv::Mat>> overlays;  ///< (sweep index, BGR image)
 };

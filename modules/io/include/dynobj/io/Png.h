@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// PNG files of images and LidarFrames (the renderings themselves: dynobj/core/FrameImages.h).
+// PNG files of images and LidarFrames (the renderings themselves: dynobj/io/FrameImages.h).
 #pragma once
 
 #include <dynobj/core/LidarFrame.h>
@@ -15,7 +15,7 @@ void writePng(const std::string& path, const cv::Mat& image);
 /// writePng through a PartialPath: a PNG under `path` is always complete.
 void writePngAtomically(const std::string& path, const cv::Mat& image);
 
-/// Writes <prefix>range.png (core::rangeToColor) and <prefix>intensity.png (core::intensityToU8),
+/// Writes <prefix>range.png (io::rangeToColor) and <prefix>intensity.png (io::intensityToU8),
 /// rows repeated `row_scale` times. Throws std::runtime_error naming the file on failure.
 void writeFramePngs(const core::LidarFrame& frame, const std::string& prefix, int row_scale = 1);
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/core/TimingStats.h>
+#include <dynobj/eval/TimingStats.h>
 #include <gtest/gtest.h>
 
 #include <sstream>
 #include <stdexcept>
 
-using namespace dynobj::core;
+using namespace dynobj::eval;
 
 TEST(TimingStats, MedianAndP99) {
   TimingStats s;
   for (int i = 1; i <= 101; i++) {
-    StageTimings t;
+    dynobj::core::StageTimings t;
     t.total = i;
     t.clustering = 2 * i;
     s.add(t);

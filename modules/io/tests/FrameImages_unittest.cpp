@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <dynobj/core/FrameImages.h>
+#include <dynobj/io/FrameImages.h>
 #include <gtest/gtest.h>
 
-using namespace dynobj::core;
+using namespace dynobj::io;
 
 TEST(FrameImages, PercentileStretchIsLinearAndKeepsNoReturnsBlack) {
   cv::Mat_<float> img(1, 4);
@@ -26,10 +26,10 @@ TEST(FrameImages, ScaleRowsRepeatsRows) {
 }
 
 TEST(FrameImages, NoIntensityFallsBackToRange) {
-  SensorModel s;
+  dynobj::core::SensorModel s;
   s.rows = 2;
   s.cols = 8;
-  LidarFrame f(s);
+  dynobj::core::LidarFrame f(s);
   f.setPixel(0, 0, 1.0f, 0.0f, cv::Vec3f(1, 0, 0), 0);
   f.setPixel(0, 1, 3.0f, 0.0f, cv::Vec3f(3, 0, 0), 1);
   f.has_intensity = false;

@@ -2,19 +2,19 @@
 // Per-stage timing statistics over many frames (median and 99th percentile), for benchmarks.
 #pragma once
 
+#include <dynobj/core/DynamicObjectDetector.h>
+
 #include <map>
 #include <ostream>
 #include <string>
 #include <vector>
 
-#include "dynobj/core/DynamicObjectDetector.h"
-
-namespace dynobj::core {
+namespace dynobj::eval {
 
 class TimingStats {
  public:
   /// Records one frame's stage timings.
-  void add(const StageTimings& t);
+  void add(const core::StageTimings& t);
   std::size_t frames() const { return frames_; }
   /// The stages, in pipeline order: "ground", "foreground", "ego-motion", "clustering",
   /// "association", "movement", "region growing", "hindsight" (offline runs), "total".
@@ -29,4 +29,4 @@ class TimingStats {
   std::size_t frames_ = 0;
 };
 
-}  // namespace dynobj::core
+}  // namespace dynobj::eval

@@ -3,11 +3,11 @@
 // PNG files: dynobj/io/Png.h).
 #pragma once
 
+#include <dynobj/core/LidarFrame.h>
+
 #include <opencv2/core.hpp>
 
-#include "dynobj/core/LidarFrame.h"
-
-namespace dynobj::core {
+namespace dynobj::io {
 
 /// Linear percentile stretch of the pixels under `mask` (non-zero): the lo_pct percentile maps
 /// to 1, the hi_pct percentile to 255 (clamped); pixels outside the mask are 0, so a no-return
@@ -16,13 +16,13 @@ cv::Mat_<std::uint8_t> stretchToU8(const cv::Mat_<float>& image, const cv::Mat_<
                                    double lo_pct = 1.0, double hi_pct = 99.0);
 
 /// Range image, near = warm colours (TURBO colour map scaled to [0, max_range]); no return = black.
-cv::Mat rangeToColor(const LidarFrame& frame, double max_range);
+cv::Mat rangeToColor(const core::LidarFrame& frame, double max_range);
 /// rangeToColor scaled to the 98th percentile of the frame's ranges (indoor and outdoor scans
 /// both use the whole colour map); the sensor's max range when the frame has no return.
-cv::Mat rangeToColor(const LidarFrame& frame);
+cv::Mat rangeToColor(const core::LidarFrame& frame);
 
 /// Intensity image stretched with stretchToU8; the range image when the frame has no intensity.
-cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame);
+cv::Mat_<std::uint8_t> intensityToU8(const core::LidarFrame& frame);
 
 /// Grey image (CV_8U) -> BGR with the pixels of `mask` (non-zero) painted in `bgr`.
 cv::Mat overlayMask(const cv::Mat_<std::uint8_t>& gray, const cv::Mat_<std::uint8_t>& mask,
@@ -32,4 +32,4 @@ cv::Mat overlayMask(const cv::Mat_<std::uint8_t>& gray, const cv::Mat_<std::uint
 /// readable on screen.
 cv::Mat scaleRows(const cv::Mat& image, int row_scale);
 
-}  // namespace dynobj::core
+}  // namespace dynobj::io

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/core/TimingStats.h"
+#include "dynobj/eval/TimingStats.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
-namespace dynobj::core {
+namespace dynobj::eval {
 
 const std::vector<std::string>& TimingStats::stages() {
   static const std::vector<std::string> names{"ground",         "foreground",  "ego-motion",
@@ -14,7 +14,7 @@ const std::vector<std::string>& TimingStats::stages() {
   return names;
 }
 
-void TimingStats::add(const StageTimings& t) {
+void TimingStats::add(const core::StageTimings& t) {
   const double v[] = {t.ground,   t.foreground,     t.ego_motion, t.clustering, t.association,
                       t.movement, t.region_growing, t.hindsight,  t.total};
   static_assert(std::size(v) == 9, "one time per stage");
@@ -43,4 +43,4 @@ void TimingStats::print(std::ostream& out) const {
   }
 }
 
-}  // namespace dynobj::core
+}  // namespace dynobj::eval

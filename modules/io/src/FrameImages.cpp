@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "dynobj/core/FrameImages.h"
+#include "dynobj/io/FrameImages.h"
 
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-namespace dynobj::core {
+namespace dynobj::io {
 namespace {
 
 double percentile(std::vector<float>& values, double pct) {
@@ -41,7 +41,7 @@ cv::Mat_<std::uint8_t> stretchToU8(const cv::Mat_<float>& image, const cv::Mat_<
   return out;
 }
 
-cv::Mat rangeToColor(const LidarFrame& frame, double max_range) {
+cv::Mat rangeToColor(const core::LidarFrame& frame, double max_range) {
   cv::Mat_<std::uint8_t> gray(frame.range.size(), 0);
   const double scale = 255.0 / std::max(max_range, 1e-3);
   for (int r = 0; r < frame.rows(); r++)
@@ -55,7 +55,7 @@ cv::Mat rangeToColor(const LidarFrame& frame, double max_range) {
   return color;
 }
 
-cv::Mat_<std::uint8_t> intensityToU8(const LidarFrame& frame) {
+cv::Mat_<std::uint8_t> intensityToU8(const core::LidarFrame& frame) {
   return stretchToU8(frame.has_intensity ? frame.intensity : frame.range, frame.valid);
 }
 
@@ -75,7 +75,7 @@ cv::Mat scaleRows(const cv::Mat& image, int row_scale) {
   return out;
 }
 
-cv::Mat rangeToColor(const LidarFrame& frame) {
+cv::Mat rangeToColor(const core::LidarFrame& frame) {
   // Colour scale: the 98th percentile of the frame's ranges, so indoor and outdoor scans both use
   // the whole colour map.
   std::vector<float> ranges;
@@ -86,4 +86,4 @@ cv::Mat rangeToColor(const LidarFrame& frame) {
   return rangeToColor(frame, ranges.empty() ? frame.sensor.max_range : percentile(ranges, 98.0));
 }
 
-}  // namespace dynobj::core
+}  // namespace dynobj::io
