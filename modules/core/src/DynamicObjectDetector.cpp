@@ -31,16 +31,20 @@ class StageClock {
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
-/// The horizontal box (x, y) of the points of `pixels`: its low and high corners.
-std::pair<Eigen::Vector2f, Eigen::Vector2f> horizontalBox(const LidarFrame& frame,
-                                                          const std::vector<int>& pixels) {
-  Eigen::Vector2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
-  for (int px : pixels) {
-    const cv::Vec3f& p = frame.pointAt(px);
-    lo = lo.cwiseMin(Eigen::Vector2f(p[0], p[1]));
-    hi = hi.cwiseMax(Eigen::Vector2f(p[0], p[1]));
+/// The horizontal box (x, y) of the points of each seed set: its low and high corners.
+std::vector<std::pair<Eigen::Vector2f, Eigen::Vector2f>> horizontalBoxes(
+    const LidarFrame& frame, const std::vector<std::vector<int>>& seeds) {
+  std::vector<std::pair<Eigen::Vector2f, Eigen::Vector2f>> boxes;
+  for (const std::vector<int>& pixels : seeds) {
+    Eigen::Vector2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
+    for (int px : pixels) {
+      const cv::Vec3f& p = frame.pointAt(px);
+      lo = lo.cwiseMin(Eigen::Vector2f(p[0], p[1]));
+      hi = hi.cwiseMax(Eigen::Vector2f(p[0], p[1]));
+    }
+    boxes.emplace_back(lo, hi);
   }
-  return {lo, hi};
+  return boxes;
 }
 
 std::vector<Eigen::Vector3d> centroidsOf(const std::vector<Cluster>& clusters) {
@@ -254,9 +258,10 @@ std::vector<int> DynamicObjectDetector::grow(const LidarFrame& frame, double dt,
                                              const std::vector<std::vector<int>>& seeds) {
   // Beyond the paper (§8): not into what the lookback frame saw on a surface, nor nearer to an
   // object at rest than to the mover's own seeds.
+  const std::vector<Box2> boxes = horizontalBoxes(frame, seeds);
   const std::vector<int> grown =
       grower_.grow(frame, result_.ground, seeds, result_.dynamic, owner_,
-                   nearerTheMover(frame, seeds, pastSurfaceTest(frame, dt, seeds)));
+                   nearerTheMover(frame, seeds, boxes, pastSurfaceTest(frame, dt, seeds, boxes)));
   result_.seen_static = grower_.refused();
   return grown;
 }
@@ -398,7 +403,8 @@ std::vector<std::vector<int>> DynamicObjectDetector::dynamicSeeds(const LidarFra
 }
 
 RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
-    const LidarFrame& frame, double dt, const std::vector<std::vector<int>>& seeds) const {
+    const LidarFrame& frame, double dt, const std::vector<std::vector<int>>& seeds,
+    const std::vector<Box2>& boxes) const {
   if (!grower_.params().past_surface_check) return {};
   const long past = std::max(chain_.oldest(), frame_index_ - free_space_.params().lookback);
   const auto view = free_space_.pastView(frame, frame_index_, past, chain_);
@@ -410,7 +416,7 @@ RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
     const auto tr = std::find_if(tracks_.tracks().begin(), tracks_.tracks().end(),
                                  [id = seed_track_[s]](const Track& t) { return t.id == id; });
     if (tr == tracks_.tracks().end() || seeds[s].empty()) continue;
-    const auto [lo, hi] = horizontalBox(frame, seeds[s]);
+    const auto& [lo, hi] = boxes[s];
     const double travelled = tr->velocity().norm() * dt * static_cast<double>(frame_index_ - past);
     clear[s] = travelled > static_cast<double>((hi - lo).norm());
     any = any || clear[s];
@@ -423,7 +429,7 @@ RegionGrower::Admit DynamicObjectDetector::pastSurfaceTest(
 
 RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
     const LidarFrame& frame, const std::vector<std::vector<int>>& seeds,
-    RegionGrower::Admit then) const {
+    const std::vector<Box2>& boxes, RegionGrower::Admit then) const {
   const double radius = grower_.params().nearer_rest_radius;
   if (radius <= 0 || !grower_.params().keep_out_settled) return then;
   // Per seed set, the feature points of the objects at rest (Track::atRest) whose cluster's box
@@ -431,7 +437,7 @@ RegionGrower::Admit DynamicObjectDetector::nearerTheMover(
   std::vector<std::vector<int>> beside(seeds.size());
   for (std::size_t s = 0; s < seeds.size(); s++) {
     if (seeds[s].empty()) continue;
-    const auto [lo, hi] = horizontalBox(frame, seeds[s]);
+    const auto& [lo, hi] = boxes[s];
     const auto r = static_cast<float>(radius);
     for (const Track& tr : tracks_.tracks()) {
       if (tr.cluster < 0 || !tr.atRest()) continue;

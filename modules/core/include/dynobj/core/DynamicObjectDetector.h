@@ -140,16 +140,20 @@ class DynamicObjectDetector {
   /// (their track ids in seed_track_). The objects at rest keep their points for the next
   /// sweep's split (rememberShapes, after it).
   std::vector<std::vector<int>> dynamicSeeds(const LidarFrame& frame, double dt);
+  using Box2 = std::pair<Eigen::Vector2f, Eigen::Vector2f>;
   /// Beyond the paper (§8, [region_growing] past_surface_check): the test region growing asks of
   /// each pixel beyond the seeds: not a point the lookback frame saw on a surface, for an object
   /// that has travelled farther than its own extent since then. Empty when off or without it.
+  /// `boxes`: the horizontal box (low, high corner) of each seed set.
   RegionGrower::Admit pastSurfaceTest(const LidarFrame& frame, double dt,
-                                      const std::vector<std::vector<int>>& seeds) const;
+                                      const std::vector<std::vector<int>>& seeds,
+                                      const std::vector<Box2>& boxes) const;
   /// Beyond the paper (§8, [region_growing] nearer_rest_radius): `then`, and a pixel nearer to
   /// the feature points of an object settled at rest beside a seed set than to its seeds (both
   /// within the radius) is refused.
   RegionGrower::Admit nearerTheMover(const LidarFrame& frame,
                                      const std::vector<std::vector<int>>& seeds,
+                                     const std::vector<Box2>& boxes,
                                      RegionGrower::Admit then) const;
   /// Objects of the result, history for the next frame.
   void endFrame(const LidarFrame& frame, const std::vector<int>& grown);
